@@ -1,0 +1,37 @@
+# Every dependency comes from a Debian 12 package (scripts/setup.sh installs them); nothing is downloaded.
+
+find_package(Eigen3 3.4 REQUIRED NO_MODULE)
+find_package(yaml-cpp REQUIRED)
+find_package(nlohmann_json 3.11 REQUIRED)
+find_package(fmt REQUIRED)
+find_package(spdlog REQUIRED)
+find_package(CLI11 REQUIRED)
+find_package(box2d 2.4 REQUIRED)
+find_package(OpenCV 4.6 REQUIRED COMPONENTS core imgproc imgcodecs)
+find_package(mujoco 2.2 REQUIRED)
+find_package(ompl 1.5 REQUIRED)
+find_package(Boost 1.74 REQUIRED)
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(OSMESA REQUIRED IMPORTED_TARGET osmesa)
+pkg_check_modules(EGL REQUIRED IMPORTED_TARGET egl)
+find_package(Threads REQUIRED)
+if(FREEPLAY_BUILD_TESTS)
+  find_package(GTest REQUIRED)
+  include(GoogleTest)
+endif()
+if(FREEPLAY_BUILD_BENCH)
+  find_package(benchmark REQUIRED)
+endif()
+
+# yaml-cpp 0.7 on Debian exports the plain target name.
+if(TARGET yaml-cpp AND NOT TARGET yaml-cpp::yaml-cpp)
+  add_library(yaml-cpp::yaml-cpp ALIAS yaml-cpp)
+endif()
+
+# OMPL 1.5's package config exports variables, not a target: wrap them in one.
+if(NOT TARGET ompl::ompl)
+  find_library(FREEPLAY_OMPL_LIBRARY NAMES ompl HINTS ${OMPL_LIBRARY_DIRS} REQUIRED)
+  add_library(ompl::ompl INTERFACE IMPORTED)
+  set_target_properties(ompl::ompl PROPERTIES INTERFACE_LINK_LIBRARIES "${FREEPLAY_OMPL_LIBRARY}"
+                        INTERFACE_INCLUDE_DIRECTORIES "/usr/include/ompl-1.5")
+endif()

@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package freeplay-sim needs. Non-interactive, idempotent, silent when nothing is missing.
+# Usage: scripts/setup.sh [--with-ros] [--with-slurm]   (runs apt-get through sudo when not root)
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config git ccache
+  libmujoco-dev libmujoco-samples libosmesa6-dev libegl-dev
+  libbox2d-dev libompl-dev libopencv-dev libeigen3-dev libyaml-cpp-dev
+  libgtest-dev libgmock-dev libbenchmark-dev libbenchmark-tools
+  libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev libboost-math-dev
+)
+for arg in "$@"; do
+  case "$arg" in
+    --with-ros) packages+=(librosbag-storage-dev libsensor-msgs-dev libtf2-msgs-dev libgeometry-msgs-dev
+                           libstd-msgs-dev librcpputils-dev librcutils-dev libament-index-cpp-dev python3-rosbag) ;;
+    --with-slurm) packages+=(slurm-wlm munge) ;;
+    -h|--help) sed -n '2,3p' "$0"; exit 0 ;;
+    *) echo "setup.sh: unknown option '$arg' (allowed: --with-ros, --with-slurm)" >&2; exit 2 ;;
+  esac
+done
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+if [ "$(id -u)" -ne 0 ]; then
+  if command -v sudo >/dev/null 2>&1; then SUDO=sudo; else
+    echo "setup.sh: missing packages (${missing[*]}); run as root or install sudo" >&2; exit 1
+  fi
+else
+  SUDO=
+fi
+echo "setup.sh: installing ${#missing[@]} package(s): ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "setup.sh: done"

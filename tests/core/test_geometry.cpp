@@ -1,0 +1,38 @@
+#include <gtest/gtest.h>
+
+#include <numbers>
+
+#include "freeplay/core/geometry.hpp"
+
+using namespace freeplay;
+
+TEST(Geometry, PointInPolygonSquare) {
+  const Polygon2 square = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  EXPECT_TRUE(point_in_polygon(square, {0.5, 0.5}));
+  EXPECT_TRUE(point_in_polygon(square, {1.0, 0.5}));  // boundary counts
+  EXPECT_FALSE(point_in_polygon(square, {1.5, 0.5}));
+  EXPECT_NEAR(signed_area(square), 1.0, 1e-12);
+  EXPECT_NEAR(signed_distance(square, {0.5, 0.5}), -0.5, 1e-12);
+  EXPECT_NEAR(signed_distance(square, {2.0, 0.5}), 1.0, 1e-12);
+}
+
+TEST(Geometry, PoseRoundTrip) {
+  const Pose2 pose{0.2, -0.1, std::numbers::pi / 3};
+  const Vec2 local(0.05, 0.01);
+  const Vec2 world = pose.to_parent(local);
+  EXPECT_TRUE(pose.to_local(world).isApprox(local, 1e-12));
+  const Eigen::Vector3d via_iso = pose.isometry() * Eigen::Vector3d(local.x(), local.y(), 0.0);
+  EXPECT_NEAR(via_iso.x(), world.x(), 1e-12);
+  EXPECT_NEAR(via_iso.y(), world.y(), 1e-12);
+}
+
+TEST(Geometry, WrapAngle) {
+  EXPECT_NEAR(wrap_angle(3 * std::numbers::pi), std::numbers::pi, 1e-12);
+  EXPECT_NEAR(wrap_angle(-std::numbers::pi / 2 - 2 * std::numbers::pi), -std::numbers::pi / 2, 1e-12);
+}
+
+TEST(Geometry, CentroidsOfTriangle) {
+  const Polygon2 tri = {{0, 0}, {3, 0}, {0, 3}};
+  EXPECT_TRUE(vertex_mean(tri).isApprox(Vec2(1, 1)));
+  EXPECT_TRUE(area_centroid(tri).isApprox(Vec2(1, 1)));
+}
