@@ -1,0 +1,88 @@
+#pragma once
+// A scenario: one experimental condition (participants, policy, protocol, planner, perception, cameras),
+// validated completely before anything runs and immutable afterwards.
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "freeplay/runner/yaml_schema.hpp"
+
+namespace freeplay::runner {
+
+/// Names the validator accepts for the open-ended choices (filled from the registries of the linked libraries).
+struct ScenarioVocabulary {
+  std::vector<std::string> policies = {"asocial", "social", "idle", "scripted"};  ///< registered play policies
+  std::vector<std::string> planners = {"astar", "rrtconnect", "prmstar", "rrtstar", "bitstar"};  ///< planners
+  std::vector<std::string> cameras = {"camera_purple", "camera_yellow", "env_camera", "CameraTop",
+                                      "CameraBottom"};  ///< stage cameras
+};
+
+/// An explicit child profile (absent fields are sampled from the population).
+struct ChildSpec {
+  std::optional<int> age;                    ///< years, 4–8
+  std::optional<std::string> gender;         ///< "female" | "male"
+  std::optional<double> sociability;         ///< 0–1
+  std::optional<double> assertiveness;       ///< 0–1
+  std::optional<double> attention_span;      ///< 0–1
+  std::optional<int> tablet_familiarity;     ///< 0, 1, 2
+};
+
+/// One camera stream the scenario asks for.
+struct CameraStream {
+  std::string name;      ///< stage camera name
+  double rate_hz = 30;   ///< frames per simulated second
+  int width = 960;       ///< pixels
+  int height = 540;      ///< pixels
+  bool depth = false;    ///< also read back depth
+};
+
+/// The protocol of the paper, with stage durations (s).
+struct Protocol {
+  double greeting_s = 20;          ///< greetings (the robot says hello in child-robot sessions)
+  double tutorial_s = 60;          ///< tutorial background, boy and girl only
+  double freeplay_cap_s = 2400;    ///< free play ends when the children quit or at this cap (40 min)
+  double debriefing_s = 30;        ///< blank screen, debriefing
+};
+
+/// A validated scenario.
+struct Scenario {
+  std::string name;                      ///< short identifier, used in output names
+  std::string description;               ///< one line for people
+  std::string file;                      ///< where it was loaded from ("" when built in code)
+  std::string condition;                 ///< "child-child" | "child-robot"
+  int episodes = 1;                      ///< episodes to run
+  std::uint64_t seed = 1;                ///< root seed; episode i uses SeedSequence(seed).derive("episode/i")
+  std::string population = "pinsoro";    ///< population the children are sampled from
+  ChildSpec purple;                      ///< explicit purple profile fields
+  ChildSpec yellow;                      ///< explicit yellow profile fields (child-child only)
+  std::string policy = "asocial";        ///< robot play policy (child-robot only)
+  YAML::Node policy_params;              ///< policy-specific parameters (validated by the policy)
+  std::string robot_mode = "kinematic";  ///< "kinematic" | "dynamic"
+  double arm_reach_m = 0.5;              ///< reach used for the arm-reach disc (real sessions: 0.5)
+  std::string planner = "astar";         ///< motion planner
+  double planner_budget_s = 0.05;        ///< planning time budget (anytime planners)
+  double finger_speed_mps = 0.05;        ///< robot finger speed (5 mm per 0.1 s)
+  double face_detection_rate = 0.98;     ///< perception: fraction of frames with the face found
+  double perception_latency_s = 0.1;     ///< perception latency
+  double gaze_noise_deg = 5.0;           ///< perception: head-pose noise (SD)
+  Protocol protocol;                     ///< stage durations
+  std::vector<CameraStream> cameras;     ///< camera output (none: no rendering)
+  bool record = false;                   ///< write a ROS bag per episode
+  YAML::Node source;                     ///< the validated document with defaults filled in
+  std::uint64_t config_hash = 0;         ///< hash of the validated document (reproducibility)
+};
+
+/// The schema every scenario file is validated against.
+std::shared_ptr<const Schema> scenario_schema(const ScenarioVocabulary& vocabulary = {});
+
+/// Loads, overrides (`KEY.PATH=VALUE`), validates completely and converts a scenario file.
+Scenario load_scenario(const std::filesystem::path& path, const std::vector<std::string>& overrides = {},
+                       const ScenarioVocabulary& vocabulary = {});
+/// Same, from a parsed document.
+Scenario scenario_from_document(YamlDocument document, const std::vector<std::string>& overrides = {},
+                                const ScenarioVocabulary& vocabulary = {});
+
+}  // namespace freeplay::runner

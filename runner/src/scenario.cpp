@@ -1,0 +1,158 @@
+#include "freeplay/runner/scenario.hpp"
+
+#include <fmt/format.h>
+
+#include <limits>
+
+#include "freeplay/core/rng.hpp"
+
+namespace freeplay::runner {
+
+namespace {
+
+using S = Schema;
+
+std::shared_ptr<const Schema> child_schema() {
+  return S::map({
+      optional("age", S::integer(4, 8), "years"),
+      optional("gender", S::enumeration({"female", "male"})),
+      optional("sociability", S::number(0, 1)),
+      optional("assertiveness", S::number(0, 1)),
+      optional("attention_span", S::number(0, 1)),
+      optional("tablet_familiarity", S::integer(0, 2), "0 not familiar, 1 somewhat, 2 familiar"),
+  });
+}
+
+template <typename T>
+std::optional<T> maybe(const YAML::Node& node, const char* key) {
+  const YAML::Node& n = node;
+  if (!n[key].IsDefined() || n[key].IsNull()) return std::nullopt;
+  return n[key].as<T>();
+}
+
+ChildSpec child_from(const YAML::Node& node) {
+  ChildSpec spec;
+  if (!node.IsDefined() || node.IsNull()) return spec;
+  spec.age = maybe<int>(node, "age");
+  spec.gender = maybe<std::string>(node, "gender");
+  spec.sociability = maybe<double>(node, "sociability");
+  spec.assertiveness = maybe<double>(node, "assertiveness");
+  spec.attention_span = maybe<double>(node, "attention_span");
+  spec.tablet_familiarity = maybe<int>(node, "tablet_familiarity");
+  return spec;
+}
+
+}  // namespace
+
+std::shared_ptr<const Schema> scenario_schema(const ScenarioVocabulary& vocabulary) {
+  const auto children = S::map({
+      with_default("population", S::enumeration({"pinsoro", "pinsoro-cc", "pinsoro-cr"}), "pinsoro",
+               "population the children are sampled from"),
+      optional("purple", child_schema(), "explicit fields of the purple child's profile"),
+      optional("yellow", child_schema(), "explicit fields of the yellow child's profile (child-child)"),
+  });
+  const auto robot = S::map({
+      with_default("policy", S::enumeration(vocabulary.policies), "asocial", "play policy"),
+      with_default("params", S::dictionary(S::any()), "{}", "policy parameters"),
+      with_default("mode", S::enumeration({"kinematic", "dynamic"}), "kinematic", "robot simulation mode"),
+      with_default("arm_reach_m", S::number(0.1, 1.0), "0.5", "arm reach for the reachable disc"),
+  });
+  const auto planner = S::map({
+      with_default("name", S::enumeration(vocabulary.planners), "astar"),
+      with_default("time_budget_s", S::number(0.001, 10.0), "0.05"),
+      with_default("finger_speed_mps", S::number(0.005, 1.0), "0.05", "5 mm per 0.1 s in the real system"),
+  });
+  const auto perception = S::map({
+      with_default("face_detection_rate", S::number(0, 1), "0.98"),
+      with_default("latency_s", S::number(0, 5), "0.1"),
+      with_default("gaze_noise_deg", S::number(0, 90), "5"),
+  });
+  const auto protocol = S::map({
+      with_default("greeting_s", S::number(0, 3600), "20"),
+      with_default("tutorial_s", S::number(0, 3600), "60"),
+      with_default("freeplay_cap_s", S::number(1, 4 * 3600), "2400"),
+      with_default("debriefing_s", S::number(0, 3600), "30"),
+  });
+  const auto camera = S::map({
+      required("name", S::enumeration(vocabulary.cameras)),
+      with_default("rate_hz", S::number(0.1, 60), "30"),
+      with_default("width", S::integer(16, 4096), "960"),
+      with_default("height", S::integer(16, 4096), "540"),
+      with_default("depth", S::boolean(), "false"),
+  });
+  return S::map({
+      required("name", S::string(), "short identifier"),
+      with_default("description", S::string(), "\"\""),
+      required("condition", S::enumeration({"child-child", "child-robot"})),
+      with_default("episodes", S::integer(1, 1000000), "1"),
+      with_default("seed", S::integer(0, std::numeric_limits<long long>::max()), "1"),
+      with_default("children", children, "{}"),
+      with_default("robot", robot, "{}"),
+      with_default("planner", planner, "{}"),
+      with_default("perception", perception, "{}"),
+      with_default("protocol", protocol, "{}"),
+      with_default("cameras", S::list(camera), "[]"),
+      with_default("record", S::boolean(), "false"),
+  });
+}
+
+Scenario scenario_from_document(YamlDocument document, const std::vector<std::string>& overrides,
+                                const ScenarioVocabulary& vocabulary) {
+  YAML::Node root = document.root;
+  if (!root.IsDefined() || root.IsNull()) {
+    throw InputError("the file is empty; a scenario needs at least 'name' and 'condition'", {}, {},
+                     {document.file, 1, 1});
+  }
+  for (const auto& assignment : overrides) apply_override(root, assignment);
+  ValidationErrors errors;
+  scenario_schema(vocabulary)->validate(root, "", document.file, errors);
+  const std::string condition = root.IsMap() && root["condition"].IsScalar() ? root["condition"].Scalar() : "";
+  if (errors.empty() && condition == "child-robot" && root["children"]["yellow"].IsDefined()) {
+    errors.add(InputError("the robot takes the yellow place in child-robot scenarios", "children.yellow",
+                          "remove children.yellow, or use condition: child-child",
+                          location_of(root["children"]["yellow"], document.file)));
+  }
+  errors.throw_if_any();
+
+  Scenario s;
+  s.file = document.file;
+  s.name = root["name"].as<std::string>();
+  s.description = root["description"].as<std::string>();
+  s.condition = condition;
+  s.episodes = root["episodes"].as<int>();
+  s.seed = root["seed"].as<std::uint64_t>();
+  s.population = root["children"]["population"].as<std::string>();
+  s.purple = child_from(root["children"]["purple"]);
+  s.yellow = child_from(root["children"]["yellow"]);
+  s.policy = root["robot"]["policy"].as<std::string>();
+  s.policy_params = root["robot"]["params"];
+  s.robot_mode = root["robot"]["mode"].as<std::string>();
+  s.arm_reach_m = root["robot"]["arm_reach_m"].as<double>();
+  s.planner = root["planner"]["name"].as<std::string>();
+  s.planner_budget_s = root["planner"]["time_budget_s"].as<double>();
+  s.finger_speed_mps = root["planner"]["finger_speed_mps"].as<double>();
+  s.face_detection_rate = root["perception"]["face_detection_rate"].as<double>();
+  s.perception_latency_s = root["perception"]["latency_s"].as<double>();
+  s.gaze_noise_deg = root["perception"]["gaze_noise_deg"].as<double>();
+  s.protocol.greeting_s = root["protocol"]["greeting_s"].as<double>();
+  s.protocol.tutorial_s = root["protocol"]["tutorial_s"].as<double>();
+  s.protocol.freeplay_cap_s = root["protocol"]["freeplay_cap_s"].as<double>();
+  s.protocol.debriefing_s = root["protocol"]["debriefing_s"].as<double>();
+  for (const auto& c : root["cameras"]) {
+    s.cameras.push_back({c["name"].as<std::string>(), c["rate_hz"].as<double>(), c["width"].as<int>(),
+                         c["height"].as<int>(), c["depth"].as<bool>()});
+  }
+  s.record = root["record"].as<bool>();
+  s.source = root;
+  YAML::Emitter emitter;
+  emitter << root;
+  s.config_hash = fnv1a64(emitter.c_str());
+  return s;
+}
+
+Scenario load_scenario(const std::filesystem::path& path, const std::vector<std::string>& overrides,
+                       const ScenarioVocabulary& vocabulary) {
+  return scenario_from_document(load_yaml_file(path), overrides, vocabulary);
+}
+
+}  // namespace freeplay::runner

@@ -1,0 +1,95 @@
+#include <gtest/gtest.h>
+
+#include "freeplay/runner/scenario.hpp"
+
+using namespace freeplay;
+using namespace freeplay::runner;
+
+namespace {
+
+Scenario parse(const std::string& text, const std::vector<std::string>& overrides = {}) {
+  return scenario_from_document(parse_yaml(text, "test.yaml"), overrides);
+}
+
+std::string error_of(const std::string& text, const std::vector<std::string>& overrides = {}) {
+  try {
+    parse(text, overrides);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+}  // namespace
+
+TEST(Scenario, MinimalFileGetsDefaults) {
+  const auto s = parse("name: cc\ncondition: child-child\n");
+  EXPECT_EQ(s.name, "cc");
+  EXPECT_EQ(s.episodes, 1);
+  EXPECT_EQ(s.planner, "astar");
+  EXPECT_DOUBLE_EQ(s.protocol.freeplay_cap_s, 2400.0);
+  EXPECT_DOUBLE_EQ(s.face_detection_rate, 0.98);
+  EXPECT_DOUBLE_EQ(s.arm_reach_m, 0.5);
+  EXPECT_TRUE(s.cameras.empty());
+}
+
+TEST(Scenario, UnknownKeyNamesFileLineColumnAndAllowedKeys) {
+  const auto msg = error_of("name: cc\ncondition: child-child\nplanner:\n  nmae: astar\n");
+  EXPECT_NE(msg.find("test.yaml:4:3"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("'planner.nmae'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("allowed: name, time_budget_s, finger_speed_mps"), std::string::npos) << msg;
+}
+
+TEST(Scenario, WrongTypeAndOutOfRange) {
+  auto msg = error_of("name: cc\ncondition: child-child\nepisodes: many\n");
+  EXPECT_NE(msg.find("test.yaml:3:11"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("expected an integer"), std::string::npos) << msg;
+  msg = error_of("name: cc\ncondition: child-child\nchildren:\n  purple: {age: 12}\n");
+  EXPECT_NE(msg.find("'children.purple.age'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("integer in [4, 8]"), std::string::npos) << msg;
+}
+
+TEST(Scenario, UnknownEnumListsAllowedValues) {
+  const auto msg = error_of("name: x\ncondition: child-robot\nrobot: {policy: friendly}\n");
+  EXPECT_NE(msg.find("unknown value 'friendly'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("asocial, social, idle, scripted"), std::string::npos) << msg;
+}
+
+TEST(Scenario, MissingRequiredKey) {
+  const auto msg = error_of("name: x\n");
+  EXPECT_NE(msg.find("missing required key 'condition'"), std::string::npos) << msg;
+}
+
+TEST(Scenario, AllProblemsReportedAtOnce) {
+  const auto msg = error_of("name: x\ncondition: child-robot\nepisodes: 0\nrecord: maybe\n");
+  EXPECT_NE(msg.find("episodes"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("record"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("2 problems"), std::string::npos) << msg;
+}
+
+TEST(Scenario, OverridesAreValidatedLikeTheFile) {
+  const auto s = parse("name: cc\ncondition: child-child\n", {"planner.name=rrtconnect", "episodes=7"});
+  EXPECT_EQ(s.planner, "rrtconnect");
+  EXPECT_EQ(s.episodes, 7);
+  const auto msg = error_of("name: cc\ncondition: child-child\n", {"planner.name=teleport"});
+  EXPECT_NE(msg.find("unknown value 'teleport'"), std::string::npos) << msg;
+  EXPECT_THROW(parse("name: cc\ncondition: child-child\n", {"no-equals-sign"}), InputError);
+}
+
+TEST(Scenario, RobotTakesTheYellowPlace) {
+  const auto msg = error_of("name: x\ncondition: child-robot\nchildren:\n  yellow: {age: 6}\n");
+  EXPECT_NE(msg.find("yellow place"), std::string::npos) << msg;
+}
+
+TEST(Scenario, SyntaxErrorHasLocation) {
+  const auto msg = error_of("name: [unclosed\ncondition: child-child\n");
+  EXPECT_NE(msg.find("test.yaml:"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("YAML syntax error"), std::string::npos) << msg;
+}
+
+TEST(Scenario, ConfigHashDependsOnContent) {
+  const auto a = parse("name: cc\ncondition: child-child\n");
+  const auto b = parse("name: cc\ncondition: child-child\nseed: 2\n");
+  EXPECT_NE(a.config_hash, b.config_hash);
+  EXPECT_EQ(a.config_hash, parse("name: cc\ncondition: child-child\n").config_hash);
+}
