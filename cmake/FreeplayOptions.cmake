@@ -1,7 +1,7 @@
 # Compiler warnings, sanitizers and the helper every library of the project uses.
 
 set(FREEPLAY_WARNINGS -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Woverloaded-virtual
-    -Wcast-align -Wnull-dereference -Wdouble-promotion -Wimplicit-fallthrough)
+    -Wcast-align -Wdouble-promotion -Wimplicit-fallthrough)
 if(FREEPLAY_WERROR)
   list(APPEND FREEPLAY_WARNINGS -Werror)
 endif()

@@ -1,0 +1,75 @@
+#include "freeplay/core/statistics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "freeplay/core/rng.hpp"
+
+namespace freeplay {
+
+double mean(const std::vector<double>& values) {
+  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
+  double sum = 0.0;
+  for (const double v : values) sum += v;
+  return sum / static_cast<double>(values.size());
+}
+
+double sample_sd(const std::vector<double>& values) {
+  if (values.size() < 2) return std::numeric_limits<double>::quiet_NaN();
+  const double m = mean(values);
+  double ss = 0.0;
+  for (const double v : values) ss += (v - m) * (v - m);
+  return std::sqrt(ss / static_cast<double>(values.size() - 1));
+}
+
+double quantile(std::vector<double> values, double q) {
+  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::sort(values.begin(), values.end());
+  const double h = (static_cast<double>(values.size()) - 1.0) * std::clamp(q, 0.0, 1.0);
+  const auto lo = static_cast<std::size_t>(std::floor(h));
+  const auto hi = std::min(lo + 1, values.size() - 1);
+  return values[lo] + (h - static_cast<double>(lo)) * (values[hi] - values[lo]);
+}
+
+double median(const std::vector<double>& values) { return quantile(values, 0.5); }
+
+double fraction_at_least(const std::vector<double>& values, double threshold) {
+  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
+  const auto count = std::count_if(values.begin(), values.end(), [&](double v) { return v >= threshold; });
+  return static_cast<double>(count) / static_cast<double>(values.size());
+}
+
+Interval bootstrap_mean_ci(const std::vector<double>& values, double confidence, int resamples,
+                           std::uint64_t seed) {
+  if (values.empty()) return {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};
+  Rng rng(seed);
+  std::vector<double> means;
+  means.reserve(static_cast<std::size_t>(resamples));
+  const auto n = static_cast<std::int64_t>(values.size());
+  for (int r = 0; r < resamples; ++r) {
+    double sum = 0.0;
+    for (std::int64_t i = 0; i < n; ++i) sum += values[static_cast<std::size_t>(rng.uniform_int(0, n - 1))];
+    means.push_back(sum / static_cast<double>(n));
+  }
+  const double alpha = (1.0 - confidence) / 2.0;
+  return {quantile(means, alpha), quantile(means, 1.0 - alpha)};
+}
+
+Summary summarize(const std::vector<double>& values, std::uint64_t seed) {
+  std::vector<double> clean;
+  clean.reserve(values.size());
+  for (const double v : values) {
+    if (!std::isnan(v)) clean.push_back(v);
+  }
+  Summary s;
+  s.n = static_cast<int>(clean.size());
+  if (clean.empty()) return s;
+  s.mean = mean(clean);
+  s.sd = clean.size() > 1 ? sample_sd(clean) : 0.0;
+  s.median = median(clean);
+  s.ci95 = bootstrap_mean_ci(clean, 0.95, 2000, seed);
+  return s;
+}
+
+}  // namespace freeplay

@@ -1,0 +1,50 @@
+#pragma once
+// The output folder of a run: episodes.jsonl (one record per finished episode), per-episode files, summaries.
+// Every file appears whole; an interrupted run keeps its finished episodes and resumes where it stopped.
+
+#include <filesystem>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace freeplay::runner {
+
+/// The run folder of a suite; safe to share between worker threads.
+class RunFolder {
+ public:
+  /// Opens or creates `dir`; reads the finished episodes of an earlier, interrupted run (a torn last line of
+  /// episodes.jsonl is dropped and reported in `dropped_partial_line()`).
+  explicit RunFolder(std::filesystem::path dir);
+
+  /// The folder.
+  const std::filesystem::path& dir() const { return dir_; }
+  /// True when `variant` episode `index` finished in this folder with the same configuration hash; throws
+  /// InputError when it finished with a different configuration (the scenario changed: use another folder).
+  bool finished(const std::string& variant, int index, std::uint64_t config_hash) const;
+  /// Appends one finished episode's record (needs "variant", "episode", "config_hash"), durable on return.
+  void append(const nlohmann::json& record);
+  /// Every finished record (earlier and this run), in completion order.
+  std::vector<nlohmann::json> records() const;
+  /// Rewrites episodes.jsonl sorted by variant (in `variant_order`) and episode index, atomically.
+  void finalize(const std::vector<std::string>& variant_order);
+  /// Writes `relative` inside the folder atomically (e.g. "events/cc-0003.jsonl").
+  void write(const std::string& relative, std::string_view contents) const;
+  /// True when the last line of an earlier episodes.jsonl was incomplete and was dropped.
+  bool dropped_partial_line() const { return dropped_partial_; }
+
+  /// File-name-safe identifier of an episode: "<variant>-<index, 4 digits>" with unsafe characters replaced.
+  static std::string episode_file_id(const std::string& variant, int index);
+  /// A new default folder name: runs/<UTC timestamp>-<name>.
+  static std::filesystem::path default_dir(const std::string& name);
+
+ private:
+  std::filesystem::path dir_;
+  mutable std::mutex mutex_;
+  std::vector<nlohmann::json> records_;
+  bool dropped_partial_ = false;
+};
+
+}  // namespace freeplay::runner
