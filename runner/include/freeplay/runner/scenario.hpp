@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "freeplay/runner/yaml_schema.hpp"
+#include "freeplay/core/yaml_schema.hpp"
 
 namespace freeplay::runner {
 

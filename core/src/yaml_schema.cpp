@@ -1,4 +1,4 @@
-#include "freeplay/runner/yaml_schema.hpp"
+#include "freeplay/core/yaml_schema.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -8,7 +8,7 @@
 #include <limits>
 #include <sstream>
 
-namespace freeplay::runner {
+namespace freeplay {
 
 namespace {
 
@@ -342,4 +342,4 @@ void apply_override(YAML::Node root, const std::string& assignment, const std::s
   }
 }
 
-}  // namespace freeplay::runner
+}  // namespace freeplay

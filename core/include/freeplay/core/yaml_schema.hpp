@@ -12,7 +12,7 @@
 
 #include "freeplay/core/error.hpp"
 
-namespace freeplay::runner {
+namespace freeplay {
 
 /// A parsed YAML document and the name of the file it came from.
 struct YamlDocument {
@@ -125,4 +125,4 @@ Field optional(std::string key, std::shared_ptr<const Schema> schema, std::strin
 /// Applies `KEY.PATH=VALUE` overrides (VALUE parsed as YAML) to `root`; list indices as `a.b[2].c` or `a.b.2.c`.
 void apply_override(YAML::Node root, const std::string& assignment, const std::string& origin = "--set");
 
-}  // namespace freeplay::runner
+}  // namespace freeplay

@@ -1,0 +1,128 @@
+#include "freeplay/policies/asocial.hpp"
+
+#include <limits>
+
+#include "freeplay/core/error.hpp"
+#include "freeplay/core/yaml_schema.hpp"
+
+namespace freeplay::policies {
+
+const std::vector<std::string>& asocial_item_order() {
+  static const std::vector<std::string> items = {"zebra",   "elephant",  "ball",  "lion", "giraffe",
+                                                 "caravan", "crocodile", "hippo", "boy",  "girl"};
+  return items;
+}
+
+const std::map<std::string, std::vector<std::string>>& asocial_habitats() {
+  static const std::map<std::string, std::vector<std::string>> habitats = {
+      {"zebra", {"yellow", "green"}},
+      {"elephant", {"green"}},
+      {"lion", {"yellow"}},
+      {"giraffe", {"yellow", "green"}},
+      {"crocodile", {"blue"}},
+      {"hippo", {"blue"}},
+      {"ball", {"yellow", "green", "purple", "white"}},
+      {"caravan", {"yellow", "green", "purple", "white"}},
+      {"boy", {"yellow", "green", "purple", "white"}},
+      {"girl", {"yellow", "green", "purple", "white"}},
+  };
+  return habitats;
+}
+
+namespace {
+
+std::shared_ptr<const Schema> params_schema() {
+  return Schema::map({
+      with_default("pause_min_s", Schema::number(0, 60), "1.2", "pause after a move: lower bound"),
+      with_default("pause_max_s", Schema::number(0, 60), "2.5", "pause after a move: upper bound"),
+      with_default("idle_pause_s", Schema::number(0, 60), "0.3", "pause when nothing was moved"),
+  });
+}
+
+bool reachable(const RobotSelf& self, const Vec2& p) {
+  if (!self.arm_reach_known) return true;  // the original plays everywhere until localised
+  return (p - self.arm_reach_centre).norm() < self.arm_reach_radius;
+}
+
+}  // namespace
+
+AsocialPolicy::AsocialPolicy(const YAML::Node& params) {
+  YAML::Node node = params.IsDefined() && !params.IsNull() ? YAML::Clone(params) : YAML::Node(YAML::NodeType::Map);
+  ValidationErrors errors;
+  params_schema()->validate(node, "robot.params", "", errors);
+  errors.throw_if_any();
+  pause_min_s_ = node["pause_min_s"].as<double>();
+  pause_max_s_ = node["pause_max_s"].as<double>();
+  idle_pause_s_ = node["idle_pause_s"].as<double>();
+  if (pause_max_s_ < pause_min_s_) {
+    throw InputError("pause_max_s is below pause_min_s", "robot.params.pause_max_s", ">= pause_min_s");
+  }
+}
+
+void AsocialPolicy::reset(const PolicyContext& /*context*/, Rng rng) {
+  rng_ = rng;
+  resume_at_ = 0.0;
+  waiting_for_result_ = false;
+  result_arrived_ = false;
+}
+
+std::optional<MoveItem> AsocialPolicy::choose_move(const Observation& observation) {
+  auto order = asocial_item_order();
+  rng_.shuffle(order);
+  for (const auto& name : order) {
+    const auto* item = observation.item(name);
+    if (item == nullptr) continue;  // TF not yet published
+    const Vec2 position = item->pose.position();
+    if (!reachable(observation.self, position)) continue;
+    const auto habitat = asocial_habitats().find(name);
+    if (habitat == asocial_habitats().end() || habitat->second.empty()) continue;
+    bool already_home = false;
+    for (const auto& zone : observation.zones) {
+      for (const auto& colour : habitat->second) {
+        if (zone.colour == colour && point_in_polygon(zone.polygon, position)) already_home = true;
+      }
+    }
+    if (already_home) continue;
+    const auto& colour =
+        habitat->second[static_cast<std::size_t>(rng_.uniform_int(0, static_cast<std::int64_t>(habitat->second.size()) - 1))];
+    const ZoneObservation* best = nullptr;
+    double best_distance = std::numeric_limits<double>::infinity();
+    for (const auto& zone : observation.zones) {
+      if (zone.colour != colour || !reachable(observation.self, zone.centroid)) continue;
+      const double d = (zone.centroid - position).norm();
+      if (d < best_distance) {
+        best_distance = d;
+        best = &zone;
+      }
+    }
+    if (best == nullptr) continue;
+    return MoveItem{name, best->centroid};
+  }
+  return std::nullopt;
+}
+
+std::vector<Action> AsocialPolicy::decide(const Observation& observation) {
+  if (waiting_for_result_) {
+    if (!result_arrived_) return {};
+    waiting_for_result_ = false;
+    resume_at_ = observation.t + rng_.uniform(pause_min_s_, pause_max_s_);
+    return {};
+  }
+  if (observation.t < resume_at_) return {};
+  if (auto move = choose_move(observation)) {
+    waiting_for_result_ = true;
+    result_arrived_ = false;
+    return {*move};
+  }
+  resume_at_ = observation.t + idle_pause_s_;
+  return {};
+}
+
+void AsocialPolicy::on_result(const ActionResult& result) {
+  if (result.kind != ActionResult::Kind::SpeechFinished) result_arrived_ = true;
+}
+
+FREEPLAY_REGISTER_POLICY(AsocialPolicy, "asocial",
+                         "faithful port of the real play node: habitats, random order, closest reachable zone");
+
+}  // namespace freeplay::policies
