@@ -1,0 +1,55 @@
+#pragma once
+// Per-condition summaries of a run: mean, SD, median and 95 % bootstrap CI of every metric, with the session
+// durations beside the PInSoRo values.
+
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "freeplay/core/statistics.hpp"
+
+namespace freeplay::runner {
+
+/// What the real PInSoRo sessions measured for one condition (pinsoro-targets.md §2).
+struct PinsoroDurations {
+  int sessions = 0;              ///< number of sessions
+  double mean_min = 0.0;         ///< mean duration (min)
+  double sd_min = 0.0;           ///< SD (min)
+  double median_min = 0.0;       ///< median (min)
+  double survival_10 = 0.0;      ///< fraction still playing at 10 min
+  double survival_20 = 0.0;      ///< … at 20 min
+  double survival_30 = 0.0;      ///< … at 30 min
+};
+
+/// The PInSoRo reference for "child-child" or "child-robot" (asocial robot); nullptr for other conditions.
+const PinsoroDurations* pinsoro_durations(const std::string& condition);
+
+/// Numeric leaves of a JSON object as dotted keys (e.g. "label_share.purple.cooperative").
+std::map<std::string, double> flatten_numbers(const nlohmann::json& value, const std::string& prefix = {});
+
+/// One metric summarised over the episodes of one variant.
+struct MetricSummary {
+  std::string metric;  ///< dotted name ("duration_s", "metrics.robot_moves_per_min", …)
+  Summary stats;       ///< n, mean, SD, median, CI
+};
+
+/// Every metric of one variant.
+struct VariantSummary {
+  std::string variant;                 ///< suite variant id
+  std::string condition;               ///< "child-child" / "child-robot"
+  std::string policy;                  ///< robot policy ("" for child-child)
+  int episodes = 0;                    ///< finished episodes
+  std::vector<double> durations_s;     ///< free-play durations
+  std::vector<MetricSummary> metrics;  ///< sorted by name
+};
+
+/// Groups records by variant (in `variant_order`) and summarises `duration_s` and every numeric `metrics.*`.
+std::vector<VariantSummary> summarize_run(const std::vector<nlohmann::json>& records,
+                                          const std::vector<std::string>& variant_order);
+/// `summary.csv`: variant, condition, metric, n, mean, sd, median, ci_low, ci_high.
+std::string summary_csv(const std::vector<VariantSummary>& summaries);
+/// `summary.md`: the durations beside PInSoRo, then the main metrics per condition, readable in a terminal.
+std::string summary_markdown(const std::vector<VariantSummary>& summaries, const std::string& title);
+
+}  // namespace freeplay::runner

@@ -1,0 +1,139 @@
+#include "freeplay/runner/summary.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace freeplay::runner {
+
+const PinsoroDurations* pinsoro_durations(const std::string& condition) {
+  static const PinsoroDurations child_child{45, 24.15, 11.25, 22.4, 0.89, 0.56, 0.38};
+  static const PinsoroDurations child_robot{30, 19.18, 10.0, 17.4, 0.73, 0.37, 0.13};
+  if (condition == "child-child") return &child_child;
+  if (condition == "child-robot") return &child_robot;
+  return nullptr;
+}
+
+std::map<std::string, double> flatten_numbers(const nlohmann::json& value, const std::string& prefix) {
+  std::map<std::string, double> out;
+  if (value.is_object()) {
+    for (const auto& [key, child] : value.items()) {
+      auto nested = flatten_numbers(child, prefix.empty() ? key : prefix + "." + key);
+      out.insert(nested.begin(), nested.end());
+    }
+  } else if (value.is_number()) {
+    out[prefix] = value.get<double>();
+  } else if (value.is_boolean()) {
+    out[prefix] = value.get<bool>() ? 1.0 : 0.0;
+  }
+  return out;
+}
+
+std::vector<VariantSummary> summarize_run(const std::vector<nlohmann::json>& records,
+                                          const std::vector<std::string>& variant_order) {
+  std::vector<VariantSummary> out;
+  for (const auto& variant : variant_order) {
+    VariantSummary s;
+    s.variant = variant;
+    std::map<std::string, std::vector<double>> values;
+    for (const auto& r : records) {
+      if (r.value("variant", "") != variant) continue;
+      ++s.episodes;
+      s.condition = r.value("condition", "");
+      s.policy = r.value("policy", "");
+      const double duration = r.value("duration_s", std::nan(""));
+      s.durations_s.push_back(duration);
+      values["duration_s"].push_back(duration);
+      for (const auto& [key, v] : flatten_numbers(r.value("metrics", nlohmann::json::object()), "metrics")) {
+        values[key].push_back(v);
+      }
+    }
+    if (s.episodes == 0) continue;
+    std::uint64_t seed = 1;
+    for (const auto& [metric, v] : values) s.metrics.push_back({metric, summarize(v, seed++)});
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+std::string summary_csv(const std::vector<VariantSummary>& summaries) {
+  std::string out = "variant,condition,policy,metric,n,mean,sd,median,ci_low,ci_high\n";
+  for (const auto& s : summaries) {
+    for (const auto& m : s.metrics) {
+      out += fmt::format("\"{}\",{},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n", s.variant, s.condition, s.policy,
+                         m.metric, m.stats.n, m.stats.mean, m.stats.sd, m.stats.median, m.stats.ci95.low,
+                         m.stats.ci95.high);
+    }
+  }
+  return out;
+}
+
+namespace {
+
+const MetricSummary* find_metric(const VariantSummary& s, const std::string& name) {
+  for (const auto& m : s.metrics) {
+    if (m.metric == name) return &m;
+  }
+  return nullptr;
+}
+
+std::string cell(const MetricSummary* m, double scale = 1.0, int digits = 2) {
+  if (m == nullptr || m->stats.n == 0) return "–";
+  return fmt::format("{:.{}f} [{:.{}f}, {:.{}f}]", m->stats.mean * scale, digits, m->stats.ci95.low * scale, digits,
+                     m->stats.ci95.high * scale, digits);
+}
+
+}  // namespace
+
+std::string summary_markdown(const std::vector<VariantSummary>& summaries, const std::string& title) {
+  std::string out = fmt::format("# {}\n\n## Free-play duration (minutes)\n\n", title);
+  out += "| variant | condition | policy | n | mean [95% CI] | SD | median | ≥10 min | ≥20 min | ≥30 min |"
+         " PInSoRo mean (SD) | PInSoRo ≥10/20/30 |\n";
+  out += "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& s : summaries) {
+    std::vector<double> minutes;
+    for (const double d : s.durations_s) minutes.push_back(d / 60.0);
+    const auto stats = summarize(minutes, 7);
+    const auto* ref = pinsoro_durations(s.condition);
+    const bool asocial_reference = ref != nullptr && (s.condition == "child-child" || s.policy == "asocial");
+    out += fmt::format("| {} | {} | {} | {} | {:.2f} [{:.2f}, {:.2f}] | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {} | {} |\n",
+                       s.variant, s.condition, s.policy.empty() ? "–" : s.policy, stats.n, stats.mean,
+                       stats.ci95.low, stats.ci95.high, stats.sd, stats.median, fraction_at_least(minutes, 10),
+                       fraction_at_least(minutes, 20), fraction_at_least(minutes, 30),
+                       asocial_reference ? fmt::format("{:.2f} ({:.2f})", ref->mean_min, ref->sd_min) : "–",
+                       asocial_reference ? fmt::format("{:.2f}/{:.2f}/{:.2f}", ref->survival_10, ref->survival_20,
+                                                       ref->survival_30)
+                                         : "–");
+  }
+  const std::vector<std::pair<std::string, std::string>> headline = {
+      {"metrics.label_share.purple.cooperative", "purple cooperative share"},
+      {"metrics.label_share.purple.goaloriented", "purple goal-oriented share"},
+      {"metrics.label_share.purple.noplay", "purple no-play share"},
+      {"metrics.child_touches_per_min", "child touches / min"},
+      {"metrics.child_item_moves_per_min", "child item moves / min"},
+      {"metrics.robot_item_moves_per_min", "robot item moves / min"},
+      {"metrics.robot_actions_per_min", "robot actions / min"},
+      {"metrics.items_taken_by_robot_from_child", "items robot took from a child"},
+      {"metrics.items_taken_by_child_from_robot", "items a child took from the robot"},
+      {"metrics.mutual_gaze_s", "mutual gaze (s)"},
+      {"metrics.robot_response_latency_s", "robot response latency (s)"},
+  };
+  out += "\n## Main metrics (mean [95% bootstrap CI])\n\n| metric |";
+  for (const auto& s : summaries) out += fmt::format(" {} |", s.variant);
+  out += "\n|---|";
+  for (std::size_t i = 0; i < summaries.size(); ++i) out += "---|";
+  out += "\n";
+  for (const auto& [key, label] : headline) {
+    bool any = false;
+    for (const auto& s : summaries) any = any || find_metric(s, key) != nullptr;
+    if (!any) continue;
+    out += fmt::format("| {} |", label);
+    for (const auto& s : summaries) out += fmt::format(" {} |", cell(find_metric(s, key)));
+    out += "\n";
+  }
+  out += "\nEvery metric, with SD and median: `summary.csv`. Per-episode values: `episodes.jsonl`.\n";
+  return out;
+}
+
+}  // namespace freeplay::runner
