@@ -1,0 +1,68 @@
+#pragma once
+// Runs the episodes of a suite on worker threads: resumable, interruptible (Ctrl-C keeps every finished
+// episode), shardable, and independent of the number of workers (each episode's result depends only on its seed).
+
+#include <atomic>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "freeplay/runner/suite.hpp"
+
+namespace freeplay::runner {
+
+/// What one finished episode produced.
+struct EpisodeOutput {
+  nlohmann::json record;                      ///< its line of episodes.jsonl (the runner adds identity fields)
+  std::map<std::string, std::string> files;   ///< extra files, relative to the run folder (events, annotations)
+  double simulated_s = 0.0;                   ///< simulated seconds (for progress and speed)
+};
+
+/// One episode to run.
+struct EpisodeTask {
+  const SuiteVariant* variant = nullptr;  ///< which variant
+  int index = 0;                          ///< episode index within the variant
+  std::uint64_t seed = 0;                 ///< the episode's root seed
+};
+
+/// Runs one episode; must return promptly with `std::nullopt`-like empty record when `stop` becomes true.
+using EpisodeFunction = std::function<EpisodeOutput(const EpisodeTask& task, const std::atomic<bool>& stop)>;
+
+/// Options of a run.
+struct RunOptions {
+  int jobs = 1;                     ///< worker threads (one episode each at a time)
+  std::filesystem::path out;        ///< run folder (created; resumed when it holds finished episodes)
+  bool progress = true;             ///< draw the progress line on stderr
+  int shard_index = 0;              ///< this shard (0-based)
+  int shard_count = 1;              ///< number of shards
+  std::string title;                ///< heading of summary.md
+};
+
+/// What a run did.
+struct RunReport {
+  int total = 0;            ///< episodes in this shard
+  int skipped = 0;          ///< already finished before (resumed)
+  int finished = 0;         ///< finished by this invocation
+  bool interrupted = false; ///< stopped early by `stop`
+  std::filesystem::path dir;///< run folder
+};
+
+/// The root seed of episode `index` of a scenario with root seed `scenario_seed` (same for every variant, so
+/// conditions share synthetic children: common random numbers).
+std::uint64_t episode_seed(std::uint64_t scenario_seed, int index);
+/// True when episode (variant id, index) belongs to shard `shard_index` of `shard_count` (balanced, deterministic).
+bool in_shard(const std::string& variant_id, int index, int shard_index, int shard_count);
+
+/// Runs every unfinished episode of `suite` in this shard; writes episodes.jsonl, per-episode files,
+/// summary.csv and summary.md (also when interrupted, for the finished episodes).
+RunReport run_suite(const Suite& suite, const RunOptions& options, const EpisodeFunction& run_episode,
+                    std::atomic<bool>& stop);
+
+/// Writes summary.csv and summary.md of the run folder's finished episodes; returns the Markdown.
+std::string write_summaries(const std::filesystem::path& dir, const Suite& suite, const std::string& title);
+
+}  // namespace freeplay::runner
