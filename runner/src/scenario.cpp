@@ -68,10 +68,10 @@ std::shared_ptr<const Schema> scenario_schema(const ScenarioVocabulary& vocabula
       with_default("gaze_noise_deg", S::number(0, 90), "5"),
   });
   const auto protocol = S::map({
-      with_default("greeting_s", S::number(0, 3600), "20"),
-      with_default("tutorial_s", S::number(0, 3600), "60"),
+      with_default("greeting_s", S::number(0, 3600), "300", "about 5 min in the paper's protocol"),
+      with_default("tutorial_s", S::number(0, 3600), "90", "1–2 min"),
       with_default("freeplay_cap_s", S::number(1, 4 * 3600), "2400"),
-      with_default("debriefing_s", S::number(0, 3600), "30"),
+      with_default("debriefing_s", S::number(0, 3600), "120", "about 2 min"),
   });
   const auto camera = S::map({
       required("name", S::enumeration(vocabulary.cameras)),

@@ -41,10 +41,10 @@ struct CameraStream {
 
 /// The protocol of the paper, with stage durations (s).
 struct Protocol {
-  double greeting_s = 20;          ///< greetings (the robot says hello in child-robot sessions)
-  double tutorial_s = 60;          ///< tutorial background, boy and girl only
+  double greeting_s = 300;         ///< greetings (the robot says hello in child-robot sessions)
+  double tutorial_s = 90;          ///< tutorial background, boy and girl only
   double freeplay_cap_s = 2400;    ///< free play ends when the children quit or at this cap (40 min)
-  double debriefing_s = 30;        ///< blank screen, debriefing
+  double debriefing_s = 120;       ///< blank screen, debriefing
 };
 
 /// A validated scenario.

@@ -1,0 +1,21 @@
+#include "vocabulary.hpp"
+
+#include <cstdlib>
+
+#include "freeplay/core/assets.hpp"
+#include "freeplay/policies/play_policy.hpp"
+
+namespace freeplay::cli {
+
+runner::ScenarioVocabulary scenario_vocabulary() {
+  runner::ScenarioVocabulary v;
+  v.policies = policies::policy_names();
+  return v;
+}
+
+std::filesystem::path scenarios_dir() {
+  if (const char* env = std::getenv("FREEPLAY_SCENARIOS_DIR"); env != nullptr && *env != '\0') return env;
+  return assets_dir().parent_path() / "scenarios";
+}
+
+}  // namespace freeplay::cli
