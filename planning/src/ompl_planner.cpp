@@ -32,7 +32,7 @@ namespace og = ompl::geometric;
 namespace {
 
 constexpr std::uint64_t kPrmBatchChecks = 50;   // termination checks per PRM* growth batch (~25 milestones)
-constexpr double kMotionCheckCells = 0.5;       // motion validation step, in cells
+constexpr double kMotionCheckCells = 1.0;       // motion validation step, in cells
 
 std::uint_fast32_t draw_seed(Rng& rng) { return static_cast<std::uint_fast32_t>((rng() >> 32) | 1U); }
 
