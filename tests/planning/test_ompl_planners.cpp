@@ -61,10 +61,11 @@ TEST_P(EveryOmplPlanner, CrossesAWallThroughItsGapWithAValidRetimedPath) {
     for (const auto& obstacle : obstacles) {
       EXPECT_GT(signed_distance(obstacle.footprint, pose.position), -0.005) << "deep inside " << obstacle.name;
     }
+    // Rim cells with occupancy < 50 are free, so near-optimal paths may cut a wall corner by up to one cell.
     if (pose.position.x() > 0.2525 && pose.position.x() < 0.2675) {
       crossed = true;
-      EXPECT_GT(pose.position.y(), -0.1875);
-      EXPECT_LT(pose.position.y(), -0.1525);
+      EXPECT_GT(pose.position.y(), -0.1875 - 0.005);
+      EXPECT_LT(pose.position.y(), -0.1525 + 0.005);
     }
   }
   EXPECT_TRUE(crossed);
