@@ -1,0 +1,151 @@
+#include "freeplay/planning/astar.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <queue>
+
+#include <fmt/format.h>
+
+#include "freeplay/core/error.hpp"
+#include "path_metrics.hpp"
+
+namespace freeplay::planning {
+
+namespace {
+
+constexpr std::uint64_t kClockCheckPeriod = 1024;  // expansions between two reads of the budget clock
+constexpr std::array<std::array<int, 2>, 8> kNeighbours = {
+    {{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1}, {1, -1}, {-1, 1}, {-1, -1}}};
+
+struct OpenEntry {
+  double f;
+  std::uint64_t order;  // insertion order: a deterministic tie-break
+  std::size_t node;
+  bool operator>(const OpenEntry& other) const {
+    return f != other.f ? f > other.f : order > other.order;
+  }
+};
+
+double heuristic_cells(AStarHeuristic heuristic, int dcol, int drow) {
+  const int ax = std::abs(dcol);
+  const int ay = std::abs(drow);
+  return heuristic == AStarHeuristic::Manhattan ? ax + ay : std::max(ax, ay);
+}
+
+}  // namespace
+
+GridSearchResult astar_search(const OccupancyGrid& grid, const Cell& start, const Cell& goal,
+                              AStarHeuristic heuristic, int outside_margin_cells, double time_budget_s) {
+  using Clock = std::chrono::steady_clock;
+  const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                           std::chrono::duration<double>(time_budget_s));
+  const int margin = std::max(0, outside_margin_cells);
+  const int width = OccupancyGrid::kCols + 2 * margin;
+  const int height = OccupancyGrid::kRows + 2 * margin;
+  const auto inside = [&](const Cell& c) {
+    return c.col >= -margin && c.col < OccupancyGrid::kCols + margin && c.row >= -margin &&
+           c.row < OccupancyGrid::kRows + margin;
+  };
+  if (!inside(start) || !inside(goal)) {
+    throw InputError(fmt::format("start or goal cell lies more than {} cells outside the map", margin),
+                     "start/goal", "points within the screen plus the outside margin");
+  }
+  const auto node_of = [&](const Cell& c) {
+    return static_cast<std::size_t>(c.row + margin) * static_cast<std::size_t>(width) +
+           static_cast<std::size_t>(c.col + margin);
+  };
+  const auto cell_of_node = [&](std::size_t node) {
+    return Cell{static_cast<int>(node % static_cast<std::size_t>(width)) - margin,
+                static_cast<int>(node / static_cast<std::size_t>(width)) - margin};
+  };
+
+  const std::size_t count = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+  std::vector<double> g(count, kInf);
+  std::vector<std::size_t> parent(count, kNone);
+  std::vector<bool> closed(count, false);
+  std::priority_queue<OpenEntry, std::vector<OpenEntry>, std::greater<>> open;
+
+  GridSearchResult result;
+  std::uint64_t order = 0;
+  const std::size_t start_node = node_of(start);
+  const std::size_t goal_node = node_of(goal);
+  g[start_node] = 0.0;
+  open.push({heuristic_cells(heuristic, goal.col - start.col, goal.row - start.row), order++, start_node});
+
+  while (!open.empty()) {
+    const OpenEntry top = open.top();
+    open.pop();
+    if (closed[top.node]) continue;
+    closed[top.node] = true;
+    ++result.expanded;
+    if (top.node == goal_node) break;
+    if (result.expanded % kClockCheckPeriod == 0 && Clock::now() > deadline) {
+      result.timed_out = true;
+      return result;
+    }
+    const Cell here = cell_of_node(top.node);
+    for (const auto& [dc, dr] : kNeighbours) {
+      const Cell next{here.col + dc, here.row + dr};
+      if (!inside(next)) continue;
+      const std::size_t next_node = node_of(next);
+      if (closed[next_node]) continue;
+      const double candidate = g[top.node] + grid.step_cost(next);
+      if (candidate < g[next_node]) {
+        g[next_node] = candidate;
+        parent[next_node] = top.node;
+        open.push({candidate + heuristic_cells(heuristic, goal.col - next.col, goal.row - next.row), order++,
+                   next_node});
+      }
+    }
+  }
+  if (!closed[goal_node]) return result;
+
+  result.found = true;
+  result.cost = g[goal_node];
+  for (std::size_t node = goal_node; node != kNone; node = parent[node]) result.cells.push_back(cell_of_node(node));
+  std::reverse(result.cells.begin(), result.cells.end());
+  return result;
+}
+
+PlanResult AStarPlanner::plan(const PlanRequest& request, Rng& rng) const {
+  validate_request(request);
+  static_cast<void>(rng());  // every planner draws one value, so the stream does not depend on the choice
+  const auto started = std::chrono::steady_clock::now();
+  const auto elapsed = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  };
+
+  const OccupancyGrid grid = OccupancyGrid::build(request.obstacles, request.item);
+  if (auto rejected = detail::check_goal(request, grid, options_)) {
+    rejected->metrics.planning_time_s = elapsed();
+    return *rejected;
+  }
+  const GridSearchResult search =
+      astar_search(grid, OccupancyGrid::cell_of(request.start), OccupancyGrid::cell_of(request.goal),
+                   options_.heuristic, options_.outside_margin_cells, request.time_budget_s);
+  PlanResult result;
+  result.metrics.expanded_nodes = search.expanded;
+  if (!search.found) {
+    result = detail::failure(search.timed_out ? FailureReason::TimeBudgetExceeded : FailureReason::NoPath,
+                             search.timed_out ? fmt::format("A* ran out of its {} s budget", request.time_budget_s)
+                                              : std::string("A* found no path"));
+    result.metrics.expanded_nodes = search.expanded;
+    result.metrics.planning_time_s = elapsed();
+    return result;
+  }
+  result.ok = true;
+  result.path.reserve(search.cells.size());
+  for (std::size_t i = 0; i < search.cells.size(); ++i) {
+    result.path.push_back({static_cast<double>(i) * options_.pose_period_s, OccupancyGrid::cell_point(search.cells[i])});
+  }
+  result.metrics.path_cost = search.cost;
+  result.metrics.planning_time_s = elapsed();
+  detail::measure_path(request, result);
+  return result;
+}
+
+}  // namespace freeplay::planning
