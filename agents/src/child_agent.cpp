@@ -113,6 +113,26 @@ void ChildAgent::observe(double t, double dt, const ChildPerception& seen) {
   const PartnerView& partner = seen.partner;
   const double w_att = ema_weight(dt, params_->drives.attention_tau_s);
 
+  int taken_item = -1;
+  // Items: who holds what; an item I placed recently that the partner grabs counts as taken from me.
+  for (int i = 0; i < seen.item_count && i < static_cast<int>(kMaxSeenItems); ++i) {
+    const SeenItem& item = seen.items[static_cast<std::size_t>(i)];
+    if (item.item < 0 || item.item >= static_cast<int>(kMaxSeenItems)) continue;
+    const auto k = static_cast<std::size_t>(item.item);
+    const HolderView before = prev_holder_[k];
+    const bool other_holds = item.holder == HolderView::Partner || item.holder == HolderView::Robot;
+    const bool other_held = before == HolderView::Partner || before == HolderView::Robot;
+    // Sharing is part of playing together: a recently placed item only feels taken outside joint play.
+    const bool joint_play = labels_.social == SocialEngagement::Cooperative;
+    if (other_holds && !other_held && (before == HolderView::Me || (mine_until_[k] > t && !joint_play))) {
+      mine_until_[k] = -1.0;
+      on_item_taken(t);
+      taken_item = item.item;
+    }
+    if (item.holder == HolderView::Me) mine_until_[k] = t + r.ownership_memory_s;
+    prev_holder_[k] = item.holder;
+  }
+
   // Partner's touches: activity level and onsets near my play.
   partner_active_ += w_att * ((partner.touch_count > 0 ? 1.0 : 0.0) - partner_active_);
   partner_joint_ -= w_att * partner_joint_;
@@ -121,7 +141,8 @@ void ChildAgent::observe(double t, double dt, const ChildPerception& seen) {
     const SeenTouch& touch = partner.touches[static_cast<std::size_t>(partner.touch_count - 1)];
     const bool near_my_play = (touch.point - my_last_point_).norm() < r.react_distance_m;
     const bool on_my_item = touch.item >= 0 && touch.item == my_last_item_;
-    if ((near_my_play || on_my_item) && t - my_last_action_t_ < r.react_window_s) {
+    const bool taken = touch.item >= 0 && touch.item == taken_item;
+    if (!taken && (near_my_play || on_my_item) && t - my_last_action_t_ < r.react_window_s) {
       on_contingent(r.act_weight);
       partner_joint_ = std::min(1.0, partner_joint_ + 0.35);
     } else if ((touch.point - my_last_point_).norm() < 2.0 * r.react_distance_m) {
@@ -152,24 +173,6 @@ void ChildAgent::observe(double t, double dt, const ChildPerception& seen) {
   }
   if (partner.wants_to_stop) partner_quit_ = true;
 
-  // Items: who holds what; an item I placed recently that the partner grabs counts as taken from me.
-  for (int i = 0; i < seen.item_count && i < static_cast<int>(kMaxSeenItems); ++i) {
-    const SeenItem& item = seen.items[static_cast<std::size_t>(i)];
-    if (item.item < 0 || item.item >= static_cast<int>(kMaxSeenItems)) continue;
-    const auto k = static_cast<std::size_t>(item.item);
-    const HolderView before = prev_holder_[k];
-    const bool other_holds = item.holder == HolderView::Partner || item.holder == HolderView::Robot;
-    const bool other_held = before == HolderView::Partner || before == HolderView::Robot;
-    // Sharing is part of playing together: a recently placed item only feels taken outside joint play.
-    const bool joint_play = labels_.social == SocialEngagement::Cooperative;
-    if (other_holds && !other_held && (before == HolderView::Me || (mine_until_[k] > t && !joint_play))) {
-      mine_until_[k] = -1.0;
-      on_item_taken(t);
-    }
-    if (item.holder == HolderView::Me) mine_until_[k] = t + r.ownership_memory_s;
-    prev_holder_[k] = item.holder;
-  }
-
   if (bid_pending_ && t >= bid_deadline_) {
     bid_pending_ = false;
     ++counters_.unanswered_bids;
@@ -193,7 +196,10 @@ void ChildAgent::on_item_taken(double t) {
   protest_pending_ = true;
   if (rng_.bernoulli(r.take_reaction_probability)) {
     const double a = std::exp(feature(Feature::Assertiveness));
-    const double weights[3] = {r.frustrated_weight, r.adversarial_weight * a, r.assertive_weight * a};
+    // The fitted entry biases of the attitude axis scale the reactions too, so the label fit governs them.
+    const auto& bias = params_->axis(Axis::SocialAttitude).bias;
+    const double weights[3] = {r.frustrated_weight * std::exp(bias[3]), r.adversarial_weight * a * std::exp(bias[1]),
+                               r.assertive_weight * a * std::exp(bias[2])};
     const double total = weights[0] + weights[1] + weights[2];
     double u = rng_.uniform() * total;
     SocialAttitude next = SocialAttitude::Frustrated;
@@ -420,9 +426,20 @@ void ChildAgent::plan_action(double t, const ChildPerception& seen, ChildActions
     } else {
       colour_ = sim::kPalette[static_cast<std::size_t>(rng_.uniform_int(0, 7))];
     }
-    out.select_colour = colour_;
-    start_stroke(t, focus, fill);
-    return;
+    // Children draw on free map areas: a press on an item would grab it instead of drawing.
+    const auto near_item = [&seen](const Vec2& q) {
+      for (int i = 0; i < seen.item_count; ++i) {
+        const SeenItem& item = seen.items[static_cast<std::size_t>(i)];
+        if ((item.position - q).norm() < 0.5 * item_size_m(item.item) + 0.045) return true;
+      }
+      return false;
+    };
+    for (int attempt = 0; attempt < 6 && near_item(clamp_reachable(focus)); ++attempt) focus = random_own_point();
+    if (!near_item(clamp_reachable(focus))) {
+      out.select_colour = colour_;
+      start_stroke(t, focus, fill);
+      return;
+    }
   }
   // A tap on an item or on the map.
   motor_ = MotorProgram{};

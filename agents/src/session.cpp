@@ -224,7 +224,7 @@ class StandInRobot {
       return;
     }
     if (t < next_goal_t_) return;
-    next_goal_t_ = t + split_lognormal(rng_, 4.3, 2.4, 15.6);
+    next_goal_t_ = t + 0.3;  // the real policy retries after 0.3 s when no item needs moving
     std::array<double, kItems> weights{};
     double total = 0.0;
     for (int i = 0; i < kItems; ++i) {
@@ -264,6 +264,7 @@ class StandInRobot {
       }
     }
     if (best >= 1e9) return;
+    next_goal_t_ = t + split_lognormal(rng_, 4.3, 2.4, 15.6);
     tray.take(chosen, kRobot);
     item_ = chosen;
     from_ = p;
@@ -284,8 +285,8 @@ class StandInRobot {
   int moves() const { return moves_; }
 
  private:
-  static constexpr double kReach = 0.30;
-  inline static const Vec2 kShoulder{0.30, 0.10};
+  static constexpr double kReach = 0.38;
+  inline static const Vec2 kShoulder{0.30, 0.05};
   Rng rng_;
   bool takes_items_;
   double next_goal_t_ = 0.0;
