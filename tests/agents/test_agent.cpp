@@ -99,7 +99,7 @@ struct TestWorld {
   }
 };
 
-/// Runs one child for `seconds` against the test world; returns the share of time frustrated or adversarial.
+/// Runs one child for `seconds` against the test world; returns how often it became frustrated or adversarial.
 double upset_share(std::uint64_t seed, bool thief, double seconds, int* taken = nullptr) {
   ChildProfile profile;
   profile.age_years = 7;
@@ -107,17 +107,20 @@ double upset_share(std::uint64_t seed, bool thief, double seconds, int* taken = 
   TestWorld world;
   world.thief = thief;
   ChildPerception seen;
-  double upset = 0.0;
+  double upset_entries = 0.0;
+  bool was_upset = false;
   for (int tick = 0; tick * 0.1 < seconds; ++tick) {
     const double t = tick * 0.1;
     world.perceive(seen);
     const ChildActions a = child.step(t, 0.1, seen);
     world.apply(t, a);
     const auto att = child.labels().attitude;
-    if (att == SocialAttitude::Frustrated || att == SocialAttitude::Adversarial) upset += 0.1;
+    const bool upset = att == SocialAttitude::Frustrated || att == SocialAttitude::Adversarial;
+    if (upset && !was_upset) upset_entries += 1.0;
+    was_upset = upset;
   }
   if (taken) *taken += child.counters().items_taken;
-  return upset / seconds;
+  return upset_entries;
 }
 
 }  // namespace
@@ -208,12 +211,14 @@ TEST(ChildAgent, TakingItemsMakesChildrenUpset) {
   double with = 0.0;
   double without = 0.0;
   int taken = 0;
-  for (std::uint64_t seed = 0; seed < 30; ++seed) {
+  for (std::uint64_t seed = 0; seed < 60; ++seed) {
     with += upset_share(seed, true, 600.0, &taken);
     without += upset_share(seed, false, 600.0);
   }
-  EXPECT_GT(taken, 30);
-  EXPECT_GT(with, 2.0 * without + 0.01) << "with " << with / 30 << " without " << without / 30;
+  EXPECT_GT(taken, 60);
+  EXPECT_GT(with, 1.5 * without + 5.0) << "with " << with << " without " << without;
+  RecordProperty("upset_entries_with_thief", static_cast<int>(with));
+  RecordProperty("upset_entries_without", static_cast<int>(without));
 }
 
 TEST(ChildAgent, SameSeedSameChild) {

@@ -60,7 +60,7 @@ TEST(Params, UnknownKeysAndLabelsAreRejectedWithTheAllowedValues) {
     EXPECT_EQ(e.key(), "drives.decay_per_minute");
     EXPECT_NE(e.allowed().find("decay_per_min"), std::string::npos);
   }
-  const std::string bad_label = replace_once(shipped_text(), "{goaloriented: 21.5,", "{goal-oriented: 21.5,");
+  const std::string bad_label = replace_once(shipped_text(), "dwell_median_s: {goaloriented: ", "dwell_median_s: {goal-oriented: ");
   try {
     (void)parse_child_model_params(bad_label, "child.yaml");
     FAIL();
