@@ -1,0 +1,103 @@
+#pragma once
+// Calibration of the child model against the PInSoRo statistics (pinsoro-targets.md): population simulation,
+// summary statistics, the simulated-vs-target table, and the documented fitting procedure.
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "freeplay/agents/params.hpp"
+#include "freeplay/agents/session.hpp"
+
+namespace freeplay::agents {
+
+/// Survival is reported at these session lengths (minutes).
+inline constexpr std::array<double, 4> kSurvivalMinutes = {5.0, 10.0, 20.0, 30.0};
+
+/// Session-duration statistics of a population (minutes).
+struct DurationStats {
+  int sessions = 0;                    ///< number of sessions
+  double mean_min = 0.0;               ///< mean
+  double sd_min = 0.0;                 ///< sample standard deviation
+  double q1_min = 0.0;                 ///< first quartile
+  double median_min = 0.0;             ///< median
+  double q3_min = 0.0;                 ///< third quartile
+  std::array<double, 4> survival{};    ///< fraction still running at kSurvivalMinutes
+  double cap_fraction = 0.0;           ///< fraction stopped by the 40-minute cap
+};
+
+/// Label statistics of a population (the children's ground-truth timelines).
+struct LabelStats {
+  std::array<std::array<double, kMaxLabels>, kAxisCount> share{};        ///< per-child mean share per label
+  std::array<std::array<double, kMaxLabels>, kAxisCount> bout_median_s{};///< pooled bout-duration median per label
+  std::array<std::array<int, kMaxLabels>, kAxisCount> bouts{};           ///< pooled bout counts per label
+  std::array<std::array<double, 5>, 5> social_transitions{};            ///< row → next-label probability
+  std::array<double, kAxisCount> changes_per_min{};                     ///< label changes per minute of session
+};
+
+/// Everything measured on one simulated population.
+struct PopulationStats {
+  Condition condition = Condition::ChildChild;  ///< which condition
+  DurationStats duration;                       ///< session lengths
+  LabelStats labels;                            ///< ground-truth label statistics (all simulated children)
+};
+
+/// Simulates `sessions` sessions (session i uses seed SeedSequence(seed).derive("session.<i>")) on `threads` threads.
+std::vector<SessionResult> simulate_population(const ChildModelParams& params, Condition condition, int sessions,
+                                               std::uint64_t seed, int threads = 1);
+/// Statistics of simulated sessions.
+PopulationStats summarise(const std::vector<SessionResult>& sessions, Condition condition);
+
+/// One row of the simulated-vs-target table.
+struct ComparisonRow {
+  std::string group;       ///< e.g. "cc duration", "cc share task_engagement"
+  std::string name;        ///< e.g. "mean (min)", "goaloriented"
+  double simulated = 0.0;  ///< simulated value
+  double target = 0.0;     ///< PInSoRo value
+  double lo = 0.0;         ///< lower bound of the acceptance band
+  double hi = 0.0;         ///< upper bound of the acceptance band
+  bool checked = false;    ///< false for rows shown for information only (no bound in the issue)
+
+  /// True when the row is unchecked or the simulated value lies in [lo, hi].
+  bool within() const { return !checked || (simulated >= lo && simulated <= hi); }
+};
+
+/// Side-by-side rows for child-child (`cc`, may be null) and child-robot (`cr`, may be null) statistics.
+std::vector<ComparisonRow> compare_with_targets(const PopulationStats* cc, const PopulationStats* cr);
+/// The rows as an aligned text table with a within/OUTSIDE mark per checked row.
+std::string format_comparison(const std::vector<ComparisonRow>& rows);
+
+/// Options of the fitting procedure.
+struct FitOptions {
+  int sessions = 120;            ///< sessions per condition per evaluation (common random numbers)
+  std::uint64_t seed = 2017;     ///< root of the session seeds
+  int rounds = 3;                ///< outer rounds of (label moments, duration fit)
+  int label_iterations = 3;      ///< moment-matching iterations of the label stage per round
+  int duration_evaluations = 60; ///< Nelder–Mead evaluations of the duration stage per round
+  int threads = 1;               ///< worker threads for the simulations
+  std::function<void(const std::string&)> log;  ///< progress lines (may be empty)
+};
+
+/// Outcome of a fit.
+struct FitResult {
+  ChildModelParams params;       ///< fitted parameters
+  double duration_loss_before = 0.0;  ///< weighted squared distance of the duration statistics before
+  double duration_loss_after = 0.0;   ///< … and after
+  double label_loss_before = 0.0;     ///< squared distance of shares and log bout medians before
+  double label_loss_after = 0.0;      ///< … and after
+  int simulations = 0;                ///< sessions simulated in total
+};
+
+/// Weighted squared distance of duration statistics to the targets (each term divided by its tolerance).
+double duration_loss(const PopulationStats& cc, const PopulationStats& cr);
+/// Squared distance of label shares (/0.05) and log bout medians (/log 1.5) to the child-child targets.
+double label_loss(const PopulationStats& cc);
+
+/// Simulated method of moments (docs/agents.md): alternates a label stage (multiplicative moment matching of
+/// transition biases and dwell medians to shares and bout medians) and a duration stage (Nelder–Mead on six
+/// log-parameters of the drives and quit hazard against CC and CR duration statistics), with common random numbers.
+FitResult fit_child_model(const ChildModelParams& start, const FitOptions& options);
+
+}  // namespace freeplay::agents

@@ -1,0 +1,147 @@
+#pragma once
+// The child model's parameters (immutable, loaded and validated from assets/agents/child-model.yaml).
+
+#include <array>
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "freeplay/agents/labels.hpp"
+
+namespace freeplay::agents {
+
+/// What the label transition weights of a child depend on (each feature is roughly in [−1, 1]).
+enum class Feature : std::uint8_t {
+  Motivation,        ///< motivation drive − 0.5
+  Age,               ///< (age − 6) / 2
+  Sociability,       ///< 2 × sociability − 1
+  Assertiveness,     ///< 2 × assertiveness − 1
+  Tablet,            ///< tablet familiarity − 1 (0 when unknown)
+  PartnerActive,     ///< how much the partner has been touching the screen lately, [0, 1]
+  PartnerJoint,      ///< how much the partner has been acting where I act lately, [0, 1]
+  PartnerAttention,  ///< how much the partner has been looking at / talking to me lately, [0, 1]
+  PartnerRobot,      ///< 1 when the partner is a robot
+  Grievance,         ///< recent unfairness (items taken from me), [0, 1]
+  TaskNoPlay,        ///< 1 while my task engagement is `noplay`
+  Together,          ///< 1 while my social engagement is `associative` or `cooperative`
+  Count
+};
+
+/// Number of features.
+inline constexpr std::size_t kFeatureCount = static_cast<std::size_t>(Feature::Count);
+/// YAML name of a feature ("motivation", "partner_joint", …).
+std::string_view feature_name(Feature feature);
+
+/// The semi-Markov process of one axis: log-normal dwell times and feature-modulated transition weights.
+struct AxisModel {
+  std::array<double, kMaxLabels> dwell_median_s{};  ///< median bout duration per label (s)
+  std::array<double, kMaxLabels> dwell_sigma{};     ///< log-normal σ of the bout duration per label
+  std::array<std::array<double, kMaxLabels>, kMaxLabels> transition{};  ///< base weight row → column (diag unused)
+  std::array<double, kMaxLabels> bias{};            ///< fitted log-weight offset of entering each label
+  std::array<std::array<double, kFeatureCount>, kMaxLabels> coupling{};  ///< log-weight per label and feature
+};
+
+/// Slow latent drives and the quit hazard they set.
+struct DriveParams {
+  double initial_motivation_mean = 0.8;   ///< motivation at the start of the session (mean)
+  double initial_motivation_sd = 0.1;     ///< spread of the initial motivation across children
+  double decay_per_min = 0.2;             ///< motivation decay rate without stimulation (1/min)
+  double attention_effect = 0.5;          ///< decay × exp(−attention_effect × (2·attention_span − 1))
+  double play_gain_per_min = 0.1;         ///< sustaining effect of own goal-oriented play (1/min, × (1 − M))
+  double contingency_gain = 0.05;         ///< motivation rise per contingent partner response (× (1 − M))
+  double unanswered_bid_drop = 0.02;      ///< motivation fall when a bid to the partner gets no response (× M)
+  double bid_response_window_s = 5.0;     ///< how long a child waits for a response to its bid (s)
+  double unfairness_drop = 0.1;           ///< motivation fall when an item is taken from me (× M)
+  double novelty_gain_per_min = 0.3;      ///< stimulation from a robot partner at t = 0 (1/min, × (1 − M))
+  double novelty_tau_min = 4.0;           ///< time constant of the robot's novelty wearing off (min)
+  double boredom_rate_per_min = 0.05;     ///< boredom growth rate × (1 − M) (1/min)
+  double quit_hazard_per_min = 0.01;      ///< quit hazard at zero boredom and M = 0.5 (1/min)
+  double quit_boredom_slope = 1.0;        ///< hazard × exp(slope × boredom)
+  double quit_motivation_slope = 2.0;     ///< hazard × exp(−slope × (M − 0.5))
+  double partner_quit_factor = 20.0;      ///< hazard multiplier once the partner has announced it wants to stop
+  double grievance_tau_s = 60.0;          ///< decay time of the grievance memory (s)
+  double attention_tau_s = 30.0;          ///< averaging time of the partner-behaviour features (s)
+};
+
+/// Reactions to what the partner does.
+struct ReactionParams {
+  double take_reaction_probability = 0.6;  ///< chance an item taken from me switches my attitude at once
+  double frustrated_weight = 1.0;          ///< weight of `frustrated` in that switch
+  double adversarial_weight = 0.5;         ///< weight of `adversarial` (× exp(assertiveness feature))
+  double assertive_weight = 1.0;           ///< weight of `assertive` (× exp(assertiveness feature))
+  double retaliation_probability = 0.3;    ///< chance an adversarial child takes back/away a partner item
+  double imitation_probability = 0.3;      ///< chance a parallel child copies the partner's last kind of action
+  double ownership_memory_s = 90.0;        ///< how long an item I placed still feels like mine (s)
+  double react_distance_m = 0.12;          ///< a partner action this close to my last action counts as a response
+  double react_window_s = 5.0;             ///< … when it starts within this many seconds of my action
+  double look_weight = 0.4;                ///< contingency weight of the partner looking at me
+  double talk_weight = 0.7;                ///< contingency weight of the partner talking to me
+  double act_weight = 1.0;                 ///< contingency weight of the partner acting on my play
+};
+
+/// Touch kinematics and action pacing.
+struct MotorParams {
+  double fitts_a_s = 0.3;              ///< Fitts intercept at 6 years (s)
+  double fitts_b_s_per_bit = 0.25;     ///< Fitts slope at 6 years (s/bit)
+  double age_slowdown_per_year = 0.12; ///< duration × (1 + slowdown × (6 − age)) for younger children
+  double endpoint_sd_m = 0.004;        ///< end-point scatter of drags and taps (m)
+  double tap_min_s = 0.10;             ///< shortest tap contact (s)
+  double tap_max_s = 0.20;             ///< longest tap contact (s)
+  double reach_depth_m = 0.22;         ///< reachable depth from the child's long side at 6 years (m)
+  double reach_per_year_m = 0.015;     ///< extra reach per year of age (m)
+  std::array<double, 4> action_gap_median_s{3.0, 2.5, 12.0, 0.0};  ///< median pause between actions per task label (0 = none)
+  double action_gap_sigma = 0.8;       ///< log-normal σ of the pause
+  double stroke_duration_s = 2.0;      ///< median duration of a drawing stroke (s)
+};
+
+/// Gaze and speech behaviour.
+struct ExpressionParams {
+  double glance_median_s = 1.5;                     ///< median duration of one gaze fixation (s)
+  double glance_sigma = 0.6;                        ///< log-normal σ of a fixation
+  std::array<double, 5> partner_face_share{0.05, 0.10, 0.08, 0.15, 0.22};  ///< P(look at partner) per social label
+  std::array<double, 5> speech_per_min{0.4, 0.3, 1.0, 3.0, 4.0};          ///< utterances to the partner per social label
+  double adult_speech_per_min = 3.0;                ///< utterances to the experimenter while adult seeking
+  double robot_curiosity_per_min = 2.0;             ///< extra looks/utterances at a robot at t = 0 (wears off with novelty)
+  double syllables_mean = 6.0;                      ///< mean syllables per utterance
+  double articulation_rate_at_3 = 2.7;              ///< syllables/s at 3 years
+  double articulation_rate_per_year = 0.12;         ///< increase per year (3.3 at 8 years)
+};
+
+/// How the personality traits of a sampled child are distributed (normal, clamped to [0, 1]).
+struct TraitParams {
+  double sociability_mean = 0.5;        ///< mean sociability
+  double sociability_sd = 0.2;          ///< spread of sociability
+  double assertiveness_mean = 0.5;      ///< mean assertiveness
+  double assertiveness_sd = 0.2;        ///< spread of assertiveness
+  double attention_mean = 0.5;          ///< mean attention span at 6 years
+  double attention_sd = 0.2;            ///< spread of attention span
+  double attention_per_year = 0.06;     ///< attention span gained per year of age
+};
+
+/// Every parameter of the child model (immutable once loaded).
+struct ChildModelParams {
+  std::array<AxisModel, kAxisCount> axes{};  ///< indexed by Axis
+  DriveParams drives;                        ///< latent drives and quit hazard
+  ReactionParams reactions;                  ///< reactions to the partner
+  MotorParams motor;                         ///< touches
+  ExpressionParams expression;               ///< gaze and speech
+  TraitParams traits;                        ///< personality traits of sampled children
+  double session_cap_s = 2400.0;             ///< the protocol's 40-minute cap (s)
+
+  /// The axis model of `axis`.
+  const AxisModel& axis(Axis a) const { return axes[static_cast<std::size_t>(a)]; }
+  /// Mutable axis model of `axis` (used by the fitting procedure).
+  AxisModel& axis(Axis a) { return axes[static_cast<std::size_t>(a)]; }
+};
+
+/// Parses and validates parameters from YAML text; `file` names the source in errors (InputError file:line:col).
+ChildModelParams parse_child_model_params(std::string_view yaml_text, const std::string& file = "<string>");
+/// Loads and validates a parameter file.
+ChildModelParams load_child_model_params(const std::filesystem::path& path);
+/// Loads the shipped parameters (assets/agents/child-model.yaml).
+ChildModelParams default_child_model_params();
+/// The parameters as YAML text that `parse_child_model_params` reads back identically; `header` becomes a comment.
+std::string child_model_params_to_yaml(const ChildModelParams& params, std::string_view header = {});
+
+}  // namespace freeplay::agents

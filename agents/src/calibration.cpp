@@ -1,0 +1,402 @@
+#include "freeplay/agents/calibration.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <thread>
+
+#include "freeplay/core/rng.hpp"
+
+namespace freeplay::agents {
+namespace {
+
+/// PInSoRo targets (pinsoro-targets.md §2–§5).
+struct DurationTarget {
+  double mean, sd, q1, median, q3;
+  std::array<double, 4> survival;
+  double cap_fraction;
+};
+constexpr DurationTarget kCcDuration{24.15, 11.25, 13.9, 22.4, 33.2, {0.98, 0.89, 0.56, 0.38}, 8.0 / 45.0};
+constexpr DurationTarget kCrDuration{19.18, 10.0, 9.7, 17.4, 25.4, {0.97, 0.73, 0.37, 0.13}, 2.0 / 30.0};
+constexpr std::array<std::array<double, kMaxLabels>, kAxisCount> kShareTarget = {{
+    {0.518, 0.232, 0.070, 0.181, 0.0},
+    {0.079, 0.056, 0.267, 0.161, 0.437},
+    {0.436, 0.012, 0.154, 0.015, 0.383},
+}};
+constexpr std::array<std::array<double, kMaxLabels>, kAxisCount> kBoutMedianTarget = {{
+    {21.5, 17.5, 10.2, 10.7, 0.0},
+    {18.3, 11.4, 18.7, 15.9, 25.8},
+    {16.6, 7.0, 8.1, 3.8, 31.2},
+}};
+constexpr std::array<std::array<double, 5>, 5> kSocialTransitionTarget = {{
+    {0.0, 0.17, 0.54, 0.13, 0.16},
+    {0.17, 0.0, 0.39, 0.21, 0.24},
+    {0.18, 0.20, 0.0, 0.24, 0.38},
+    {0.03, 0.13, 0.20, 0.0, 0.64},
+    {0.13, 0.18, 0.29, 0.40, 0.0},
+}};
+constexpr std::array<double, kAxisCount> kChangesPerMinTarget = {1.54, 1.00, 1.62};
+
+constexpr double kShareTolerance = 0.05;
+constexpr double kBoutFactor = 1.5;
+
+double quantile(std::vector<double> values, double q) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const double pos = q * static_cast<double>(values.size() - 1);
+  const auto i = static_cast<std::size_t>(pos);
+  const double f = pos - static_cast<double>(i);
+  return i + 1 < values.size() ? values[i] * (1.0 - f) + values[i + 1] * f : values[i];
+}
+
+void add_child(const ChildOutcome& child, double duration_s, LabelStats& stats,
+               std::array<std::vector<std::vector<double>>, kAxisCount>& bout_lengths,
+               std::array<std::array<double, 5>, 5>& transition_counts, std::array<double, kAxisCount>& changes) {
+  for (const Axis axis : kAxes) {
+    const auto a = static_cast<std::size_t>(axis);
+    const auto shares = label_shares(child.timeline, axis);
+    for (std::size_t l = 0; l < kMaxLabels; ++l) stats.share[a][l] += shares[l];
+    int previous = -1;
+    for (const LabelInterval& bout : child.timeline) {
+      if (bout.axis != axis) continue;
+      bout_lengths[a][bout.label].push_back(bout.stop - bout.start);
+      if (previous >= 0 && previous != bout.label) {
+        changes[a] += 1.0;
+        if (axis == Axis::SocialEngagement) transition_counts[static_cast<std::size_t>(previous)][bout.label] += 1.0;
+      }
+      previous = bout.label;
+    }
+  }
+  (void)duration_s;
+}
+
+std::vector<double> duration_terms(const DurationStats& s, const DurationTarget& t) {
+  return {(s.mean_min - t.mean) / (0.1 * t.mean), (s.sd_min - t.sd) / (0.25 * t.sd),
+          (s.survival[1] - t.survival[1]) / 0.1, (s.survival[2] - t.survival[2]) / 0.1,
+          (s.survival[3] - t.survival[3]) / 0.1};
+}
+
+void add_duration_rows(std::vector<ComparisonRow>& rows, const std::string& group, const DurationStats& s,
+                       const DurationTarget& t) {
+  rows.push_back({group, "mean (min)", s.mean_min, t.mean, 0.9 * t.mean, 1.1 * t.mean, true});
+  rows.push_back({group, "SD (min)", s.sd_min, t.sd, 0.75 * t.sd, 1.25 * t.sd, true});
+  rows.push_back({group, "Q1 (min)", s.q1_min, t.q1, 0, 0, false});
+  rows.push_back({group, "median (min)", s.median_min, t.median, 0, 0, false});
+  rows.push_back({group, "Q3 (min)", s.q3_min, t.q3, 0, 0, false});
+  for (std::size_t i = 0; i < kSurvivalMinutes.size(); ++i) {
+    const bool checked = i > 0;  // the issue bounds survival at 10, 20 and 30 min
+    rows.push_back({group, fmt::format("survival >= {} min", kSurvivalMinutes[i]), s.survival[i], t.survival[i],
+                    t.survival[i] - 0.1, t.survival[i] + 0.1, checked});
+  }
+  rows.push_back({group, "hit 40-min cap", s.cap_fraction, t.cap_fraction, 0, 0, false});
+}
+
+/// Nelder–Mead minimisation of `f` from `x0` with initial step `step`, at most `max_evals` evaluations.
+std::vector<double> nelder_mead(const std::function<double(const std::vector<double>&)>& f, std::vector<double> x0,
+                                double step, int max_evals, double& best_value) {
+  const std::size_t n = x0.size();
+  std::vector<std::vector<double>> simplex(n + 1, x0);
+  std::vector<double> values(n + 1);
+  for (std::size_t i = 0; i < n; ++i) simplex[i + 1][i] += step;
+  int evals = 0;
+  for (std::size_t i = 0; i <= n; ++i) {
+    values[i] = f(simplex[i]);
+    ++evals;
+  }
+  while (evals < max_evals) {
+    std::vector<std::size_t> order(n + 1);
+    for (std::size_t i = 0; i <= n; ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return values[a] < values[b]; });
+    const std::size_t best = order.front();
+    const std::size_t worst = order.back();
+    const std::size_t second = order[n - 1];
+    std::vector<double> centroid(n, 0.0);
+    for (std::size_t i = 0; i <= n; ++i) {
+      if (i == worst) continue;
+      for (std::size_t k = 0; k < n; ++k) centroid[k] += simplex[i][k] / static_cast<double>(n);
+    }
+    const auto blend = [&](double a) {
+      std::vector<double> x(n);
+      for (std::size_t k = 0; k < n; ++k) x[k] = centroid[k] + a * (simplex[worst][k] - centroid[k]);
+      return x;
+    };
+    const std::vector<double> reflected = blend(-1.0);
+    const double fr = f(reflected);
+    ++evals;
+    if (fr < values[best]) {
+      const std::vector<double> expanded = blend(-2.0);
+      const double fe = f(expanded);
+      ++evals;
+      if (fe < fr) {
+        simplex[worst] = expanded;
+        values[worst] = fe;
+      } else {
+        simplex[worst] = reflected;
+        values[worst] = fr;
+      }
+    } else if (fr < values[second]) {
+      simplex[worst] = reflected;
+      values[worst] = fr;
+    } else {
+      const std::vector<double> contracted = blend(0.5);
+      const double fc = f(contracted);
+      ++evals;
+      if (fc < values[worst]) {
+        simplex[worst] = contracted;
+        values[worst] = fc;
+      } else {  // shrink towards the best vertex
+        for (std::size_t i = 0; i <= n && evals < max_evals; ++i) {
+          if (i == best) continue;
+          for (std::size_t k = 0; k < n; ++k) simplex[i][k] = simplex[best][k] + 0.5 * (simplex[i][k] - simplex[best][k]);
+          values[i] = f(simplex[i]);
+          ++evals;
+        }
+      }
+    }
+  }
+  const auto it = std::min_element(values.begin(), values.end());
+  best_value = *it;
+  return simplex[static_cast<std::size_t>(it - values.begin())];
+}
+
+/// The duration-stage parameters, as log values.
+std::vector<double> duration_vector(const ChildModelParams& p) {
+  const DriveParams& d = p.drives;
+  return {std::log(d.decay_per_min),   std::log(d.contingency_gain),      std::log(d.boredom_rate_per_min),
+          std::log(d.quit_hazard_per_min), std::log(d.unanswered_bid_drop), std::log(d.partner_quit_factor)};
+}
+
+void apply_duration_vector(const std::vector<double>& x, ChildModelParams& p) {
+  DriveParams& d = p.drives;
+  d.decay_per_min = std::clamp(std::exp(x[0]), 1e-4, 100.0);
+  d.contingency_gain = std::clamp(std::exp(x[1]), 1e-5, 1.0);
+  d.boredom_rate_per_min = std::clamp(std::exp(x[2]), 1e-5, 100.0);
+  d.quit_hazard_per_min = std::clamp(std::exp(x[3]), 1e-6, 100.0);
+  d.unanswered_bid_drop = std::clamp(std::exp(x[4]), 1e-5, 1.0);
+  d.partner_quit_factor = std::clamp(std::exp(x[5]), 1.0, 1e6);
+}
+
+}  // namespace
+
+std::vector<SessionResult> simulate_population(const ChildModelParams& params, Condition condition, int sessions,
+                                               std::uint64_t seed, int threads) {
+  std::vector<SessionResult> results(static_cast<std::size_t>(std::max(0, sessions)));
+  const SeedSequence root(seed);
+  SessionConfig config;
+  config.condition = condition;
+  const auto run_range = [&](int worker, int workers) {
+    for (int i = worker; i < sessions; i += workers) {
+      results[static_cast<std::size_t>(i)] =
+          simulate_session(params, config, root.derive(fmt::format("session.{}", i)).root());
+    }
+  };
+  threads = std::clamp(threads, 1, 64);
+  if (threads == 1) {
+    run_range(0, 1);
+  } else {
+    std::vector<std::thread> pool;
+    for (int w = 0; w < threads; ++w) pool.emplace_back(run_range, w, threads);
+    for (auto& th : pool) th.join();
+  }
+  return results;
+}
+
+PopulationStats summarise(const std::vector<SessionResult>& sessions, Condition condition) {
+  PopulationStats out;
+  out.condition = condition;
+  std::vector<double> minutes;
+  int capped = 0;
+  for (const SessionResult& s : sessions) {
+    minutes.push_back(s.duration_s / 60.0);
+    capped += s.hit_cap ? 1 : 0;
+  }
+  DurationStats& d = out.duration;
+  d.sessions = static_cast<int>(sessions.size());
+  if (!minutes.empty()) {
+    double sum = 0.0;
+    for (double m : minutes) sum += m;
+    d.mean_min = sum / static_cast<double>(minutes.size());
+    double ss = 0.0;
+    for (double m : minutes) ss += (m - d.mean_min) * (m - d.mean_min);
+    d.sd_min = minutes.size() > 1 ? std::sqrt(ss / static_cast<double>(minutes.size() - 1)) : 0.0;
+    d.q1_min = quantile(minutes, 0.25);
+    d.median_min = quantile(minutes, 0.5);
+    d.q3_min = quantile(minutes, 0.75);
+    for (std::size_t i = 0; i < kSurvivalMinutes.size(); ++i) {
+      const auto alive = std::count_if(minutes.begin(), minutes.end(), [&](double m) { return m >= kSurvivalMinutes[i]; });
+      d.survival[i] = static_cast<double>(alive) / static_cast<double>(minutes.size());
+    }
+    d.cap_fraction = static_cast<double>(capped) / static_cast<double>(minutes.size());
+  }
+
+  LabelStats& l = out.labels;
+  std::array<std::vector<std::vector<double>>, kAxisCount> bout_lengths;
+  for (auto& axis : bout_lengths) axis.resize(kMaxLabels);
+  std::array<std::array<double, 5>, 5> transition_counts{};
+  std::array<double, kAxisCount> changes{};
+  int children = 0;
+  double total_minutes = 0.0;
+  for (const SessionResult& s : sessions) {
+    add_child(s.purple, s.duration_s, l, bout_lengths, transition_counts, changes);
+    ++children;
+    total_minutes += s.duration_s / 60.0;
+    if (s.yellow) {
+      add_child(*s.yellow, s.duration_s, l, bout_lengths, transition_counts, changes);
+      ++children;
+      total_minutes += s.duration_s / 60.0;
+    }
+  }
+  for (std::size_t a = 0; a < kAxisCount; ++a) {
+    for (std::size_t j = 0; j < kMaxLabels; ++j) {
+      if (children > 0) l.share[a][j] /= children;
+      l.bouts[a][j] = static_cast<int>(bout_lengths[a][j].size());
+      l.bout_median_s[a][j] = quantile(bout_lengths[a][j], 0.5);
+    }
+    l.changes_per_min[a] = total_minutes > 0.0 ? changes[a] / total_minutes : 0.0;
+  }
+  for (std::size_t i = 0; i < 5; ++i) {
+    double row = 0.0;
+    for (double c : transition_counts[i]) row += c;
+    for (std::size_t j = 0; j < 5; ++j) l.social_transitions[i][j] = row > 0.0 ? transition_counts[i][j] / row : 0.0;
+  }
+  return out;
+}
+
+std::vector<ComparisonRow> compare_with_targets(const PopulationStats* cc, const PopulationStats* cr) {
+  std::vector<ComparisonRow> rows;
+  if (cc) {
+    add_duration_rows(rows, "cc duration", cc->duration, kCcDuration);
+    for (const Axis axis : kAxes) {
+      const auto a = static_cast<std::size_t>(axis);
+      const std::string group = fmt::format("cc share {}", axis_name(axis));
+      for (std::size_t j = 0; j < label_count(axis); ++j) {
+        const double t = kShareTarget[a][j];
+        rows.push_back({group, std::string(label_name(axis, j)), cc->labels.share[a][j], t, t - kShareTolerance,
+                        t + kShareTolerance, true});
+      }
+    }
+    for (const Axis axis : kAxes) {
+      const auto a = static_cast<std::size_t>(axis);
+      const std::string group = fmt::format("cc bout median (s) {}", axis_name(axis));
+      for (std::size_t j = 0; j < label_count(axis); ++j) {
+        const double t = kBoutMedianTarget[a][j];
+        rows.push_back({group, std::string(label_name(axis, j)), cc->labels.bout_median_s[a][j], t, t / kBoutFactor,
+                        t * kBoutFactor, true});
+      }
+    }
+    for (const Axis axis : kAxes) {
+      const auto a = static_cast<std::size_t>(axis);
+      rows.push_back({"cc label changes per min", std::string(axis_name(axis)), cc->labels.changes_per_min[a],
+                      kChangesPerMinTarget[a], 0, 0, false});
+    }
+    for (std::size_t i = 0; i < 5; ++i) {
+      for (std::size_t j = 0; j < 5; ++j) {
+        if (i == j) continue;
+        rows.push_back({"cc social transition",
+                        fmt::format("{} -> {}", label_name(Axis::SocialEngagement, i), label_name(Axis::SocialEngagement, j)),
+                        cc->labels.social_transitions[i][j], kSocialTransitionTarget[i][j], 0, 0, false});
+      }
+    }
+  }
+  if (cr) add_duration_rows(rows, "cr duration", cr->duration, kCrDuration);
+  return rows;
+}
+
+std::string format_comparison(const std::vector<ComparisonRow>& rows) {
+  std::string out = fmt::format("{:<40} {:<32} {:>10} {:>10} {:>19}  {}\n", "group", "statistic", "simulated", "target",
+                                "bound", "");
+  for (const ComparisonRow& r : rows) {
+    const std::string bound = r.checked ? fmt::format("[{:.3f}, {:.3f}]", r.lo, r.hi) : "-";
+    const char* mark = r.checked ? (r.within() ? "within" : "OUTSIDE") : "";
+    out += fmt::format("{:<40} {:<32} {:>10.3f} {:>10.3f} {:>19}  {}\n", r.group, r.name, r.simulated, r.target, bound,
+                       mark);
+  }
+  return out;
+}
+
+double duration_loss(const PopulationStats& cc, const PopulationStats& cr) {
+  double loss = 0.0;
+  for (double term : duration_terms(cc.duration, kCcDuration)) loss += term * term;
+  for (double term : duration_terms(cr.duration, kCrDuration)) loss += term * term;
+  return loss;
+}
+
+double label_loss(const PopulationStats& cc) {
+  double loss = 0.0;
+  for (const Axis axis : kAxes) {
+    const auto a = static_cast<std::size_t>(axis);
+    for (std::size_t j = 0; j < label_count(axis); ++j) {
+      const double ds = (cc.labels.share[a][j] - kShareTarget[a][j]) / kShareTolerance;
+      const double sim_median = std::max(cc.labels.bout_median_s[a][j], 0.1);
+      const double dm = std::log(sim_median / kBoutMedianTarget[a][j]) / std::log(kBoutFactor);
+      loss += ds * ds + dm * dm;
+    }
+  }
+  return loss;
+}
+
+FitResult fit_child_model(const ChildModelParams& start, const FitOptions& options) {
+  FitResult result;
+  result.params = start;
+  ChildModelParams& p = result.params;
+  const auto log = [&](const std::string& line) {
+    if (options.log) options.log(line);
+  };
+  const auto run = [&](const ChildModelParams& params, Condition condition) {
+    result.simulations += options.sessions;
+    return summarise(simulate_population(params, condition, options.sessions, options.seed, options.threads),
+                     condition);
+  };
+
+  PopulationStats cc = run(p, Condition::ChildChild);
+  PopulationStats cr = run(p, Condition::ChildRobot);
+  result.duration_loss_before = duration_loss(cc, cr);
+  result.label_loss_before = label_loss(cc);
+  log(fmt::format("start: duration loss {:.3f}, label loss {:.3f}", result.duration_loss_before,
+                  result.label_loss_before));
+
+  for (int round = 0; round < options.rounds; ++round) {
+    // Label stage: multiplicative moment matching (damped), shares → transition biases, bout medians → dwell medians.
+    constexpr double kStep = 0.7;
+    for (int it = 0; it < options.label_iterations; ++it) {
+      for (const Axis axis : kAxes) {
+        const auto a = static_cast<std::size_t>(axis);
+        AxisModel& m = p.axis(axis);
+        double mean_bias = 0.0;
+        for (std::size_t j = 0; j < label_count(axis); ++j) {
+          const double sim_share = std::max(cc.labels.share[a][j], 1e-3);
+          m.bias[j] = std::clamp(m.bias[j] + kStep * std::log(kShareTarget[a][j] / sim_share), -15.0, 15.0);
+          mean_bias += m.bias[j] / static_cast<double>(label_count(axis));
+          if (cc.labels.bouts[a][j] >= 5) {
+            const double ratio = kBoutMedianTarget[a][j] / std::max(cc.labels.bout_median_s[a][j], 0.1);
+            m.dwell_median_s[j] = std::clamp(m.dwell_median_s[j] * std::pow(ratio, kStep), 0.5, 3600.0);
+          }
+        }
+        for (std::size_t j = 0; j < label_count(axis); ++j) m.bias[j] -= mean_bias;
+      }
+      cc = run(p, Condition::ChildChild);
+      log(fmt::format("round {} label iteration {}: label loss {:.3f}", round + 1, it + 1, label_loss(cc)));
+    }
+    // Duration stage: Nelder–Mead on the drive/hazard log-parameters, CC and CR jointly, same seeds every time.
+    double best = 0.0;
+    const auto objective = [&](const std::vector<double>& x) {
+      ChildModelParams trial = p;
+      apply_duration_vector(x, trial);
+      const double loss = duration_loss(run(trial, Condition::ChildChild), run(trial, Condition::ChildRobot));
+      return loss;
+    };
+    const std::vector<double> x = nelder_mead(objective, duration_vector(p), round == 0 ? 0.5 : 0.25,
+                                              options.duration_evaluations, best);
+    apply_duration_vector(x, p);
+    cc = run(p, Condition::ChildChild);
+    cr = run(p, Condition::ChildRobot);
+    log(fmt::format("round {} duration stage: duration loss {:.3f}, label loss {:.3f}", round + 1,
+                    duration_loss(cc, cr), label_loss(cc)));
+  }
+  result.duration_loss_after = duration_loss(cc, cr);
+  result.label_loss_after = label_loss(cc);
+  return result;
+}
+
+}  // namespace freeplay::agents

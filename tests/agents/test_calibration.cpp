@@ -1,0 +1,42 @@
+#include <gtest/gtest.h>
+
+#include "freeplay/agents/calibration.hpp"
+
+using namespace freeplay::agents;
+
+namespace {
+const ChildModelParams& params() {
+  static const ChildModelParams p = default_child_model_params();
+  return p;
+}
+}  // namespace
+
+// The fixed-seed population of 200 sessions per condition meets every bound of the issue (pinsoro-targets.md).
+TEST(Calibration, ShippedParametersMeetTheTargets) {
+  const PopulationStats cc = summarise(simulate_population(params(), Condition::ChildChild, 200, 42), Condition::ChildChild);
+  const PopulationStats cr = summarise(simulate_population(params(), Condition::ChildRobot, 200, 42), Condition::ChildRobot);
+  const auto rows = compare_with_targets(&cc, &cr);
+  for (const ComparisonRow& row : rows) {
+    EXPECT_TRUE(row.within()) << row.group << " / " << row.name << ": simulated " << row.simulated << ", bound ["
+                              << row.lo << ", " << row.hi << "]";
+  }
+  // The asocial partner shortens sessions through the child's reactions, with the same parameters.
+  EXPECT_LT(cr.duration.mean_min, cc.duration.mean_min);
+}
+
+TEST(Calibration, StatisticsOfAKnownPopulation) {
+  std::vector<SessionResult> sessions(4);
+  for (int i = 0; i < 4; ++i) {
+    sessions[static_cast<std::size_t>(i)].duration_s = 60.0 * (10 * (i + 1));
+    sessions[static_cast<std::size_t>(i)].purple.timeline = {{Axis::TaskEngagement, 0, 0.0, 30.0},
+                                                             {Axis::TaskEngagement, 3, 30.0, 40.0}};
+  }
+  const PopulationStats s = summarise(sessions, Condition::ChildRobot);
+  EXPECT_DOUBLE_EQ(s.duration.mean_min, 25.0);
+  EXPECT_DOUBLE_EQ(s.duration.median_min, 25.0);
+  EXPECT_DOUBLE_EQ(s.duration.survival[1], 1.0);
+  EXPECT_DOUBLE_EQ(s.duration.survival[2], 0.75);
+  EXPECT_DOUBLE_EQ(s.duration.survival[3], 0.5);
+  EXPECT_DOUBLE_EQ(s.labels.share[0][0], 0.75);
+  EXPECT_DOUBLE_EQ(s.labels.bout_median_s[0][3], 10.0);
+}
