@@ -28,7 +28,7 @@ class DrawingCanvas {
   void extend_stroke(int stroke_id, const Vec2& p);
   /// Finishes an active stroke (draws its last half segment); unknown ids are ignored.
   void end_stroke(int stroke_id);
-  /// Removes every stroke (the bare background remains); active strokes are dropped.
+  /// Removes every stroke (the bare background remains); active strokes go on from their current point.
   void clear_strokes();
 
   /// Background + strokes, BGR CV_8UC3.
