@@ -176,6 +176,9 @@ struct Sandtray::Impl {
     b2BodyDef anchor_def;
     anchor_def.type = b2_staticBody;
     anchor = world.CreateBody(&anchor_def);
+    // The walls live on their own static body: bodies joined by a joint do not collide (collideConnected is
+    // false), so walls on the joints' anchor body would let a dragged item through.
+    b2Body* walls_body = world.CreateBody(&anchor_def);
     const double t = kWallThicknessM;
     const double w = kScreenWidthM;
     const double h = kScreenHeightM;
@@ -193,7 +196,7 @@ struct Sandtray::Impl {
       fixture.density = 1.0F;
       fixture.friction = 1.0F;
       fixture.filter.categoryBits = kWallCategory;
-      anchor->CreateFixture(&fixture);
+      walls_body->CreateFixture(&fixture);
     }
     for (const auto& spec : catalogue->items()) {
       b2BodyDef def;
