@@ -56,11 +56,11 @@ class Painter {
     const int font = cv::FONT_HERSHEY_SIMPLEX;
     int baseline = 0;
     const cv::Size unit = cv::getTextSize(text, font, 1.0, 1, &baseline);
-    const double scale = std::min(max_width * side_ / unit.width, 0.16 * side_ / unit.height);
-    const int thickness = std::max(1, static_cast<int>(std::lround(scale * 1.6)));
+    const double scale = std::min(max_width * side_ / unit.width, 0.11 * side_ / unit.height);
+    const int thickness = std::max(1, static_cast<int>(std::lround(scale * 1.5)));
     const cv::Size size = cv::getTextSize(text, font, scale, thickness, &baseline);
     const cv::Point origin(static_cast<int>(cx * side_ - size.width / 2.0), static_cast<int>(cy * side_ + size.height / 2.0));
-    const int outline = thickness + std::max(2, thickness);
+    const int outline = thickness + 2;
     cv::putText(bgr_, text, origin, font, scale, rgb(255, 255, 255), outline, cv::LINE_AA);
     cv::putText(alpha_, text, origin, font, scale, cv::Scalar(255), outline, cv::LINE_AA);
     cv::putText(bgr_, text, origin, font, scale, rgb(30, 30, 30), thickness, cv::LINE_AA);
@@ -253,7 +253,7 @@ cv::Mat draw_item_picture(const ItemSpec& spec, int side_px) {
   } else {
     p.ellipse(0.5, 0.45, 0.4, 0.32, colour);  // any other item: a blob in its colour
   }
-  if (side_px >= 24) p.label(spec.label.empty() ? spec.name : spec.label, 0.5, 0.92, 0.9);
+  if (side_px >= 24) p.label(spec.label.empty() ? spec.name : spec.label, 0.5, 0.92, 0.8);
   return p.bgra();
 }
 
