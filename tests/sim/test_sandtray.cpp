@@ -4,12 +4,14 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <set>
 
 #include "freeplay/core/error.hpp"
 #include "freeplay/sim/item_catalogue.hpp"
 #include "freeplay/sim/sandtray.hpp"
 #include "freeplay/sim/screen.hpp"
+#include "freeplay/sim/zones.hpp"
 
 namespace freeplay::sim {
 namespace {
@@ -516,6 +518,56 @@ TEST(Sandtray, BackgroundIsRepublishedAtMostFourTimesASecondAfterStrokes) {
   tray->signal(Signal::ClearDrawing);
   tray->step(0.25);
   EXPECT_GT(tray->background_version(), start + 7);
+}
+
+}  // namespace
+}  // namespace freeplay::sim
+
+namespace freeplay::sim {
+namespace {
+
+TEST(SandtrayRobot, RepeatedIdenticalPosesDoNotRestartTheTimer) {
+  // The real subscriber ignores position changes under 0.5 px: a robot that repeats one pose lets go after 1 s.
+  auto tray = make_tray(19);
+  tray->signal(Signal::StartFreeplay);
+  tray->signal(Signal::ShuffleItems);
+  settle(*tray);
+  const std::string name = grabbable_item(*tray);
+  const Vec2 p = tray->item(name).pose.position();
+  tray->robot_pose(p);
+  for (int i = 0; i < 9; ++i) {
+    tray->step(0.1);
+    tray->robot_pose(p + Vec2(0.0001, 0.0));  // 0.32 px: below the real EPSILON
+  }
+  tray->step(0.1);
+  EXPECT_FALSE(tray->robot_item()) << "released 1.0 s after the first pose";
+  EXPECT_TRUE(has_event(tray->drain_events(), "interaction_event", "message", "releasing_" + name));
+}
+
+TEST(SandtrayRobot, PosesAreIgnoredOnTheBlankScreenAndOffItemsGrabNothing) {
+  auto tray = make_tray(20);
+  const Vec2 p = tray->items().front().pose.position();
+  tray->robot_pose(p);
+  EXPECT_FALSE(tray->robot_item());
+  EXPECT_FALSE(tray->robot_hand());
+  tray->signal(Signal::StartFreeplay);
+  tray->robot_pose(Vec2(0.1, -0.1));
+  EXPECT_FALSE(tray->robot_item());
+  ASSERT_TRUE(tray->robot_hand());
+  EXPECT_NEAR(tray->robot_hand()->x(), 0.1, 1e-12);
+  tray->step(1.0);
+  EXPECT_FALSE(tray->robot_hand()) << "the hand disappears with the release timer";
+}
+
+TEST(SandtrayScreenImage, RendersTheScreenAtTheRequestedWidth) {
+  auto tray = make_tray(21);
+  tray->signal(Signal::StartFreeplay);
+  const cv::Mat screen = tray->render_screen(480);
+  EXPECT_EQ(screen.cols, 480);
+  EXPECT_EQ(screen.rows, 268);
+  EXPECT_EQ(screen.type(), CV_8UC3);
+  EXPECT_EQ(tray->background().cols, 240) << "the published background has the raster width";
+  EXPECT_GT(tray->zones().zones().size(), 0U) << "the map background has colour zones";
 }
 
 }  // namespace
