@@ -50,6 +50,7 @@ std::vector<std::vector<cv::Point>> contours_of(const cv::Mat& small_hsv, const 
   cv::inRange(small_hsv, cv::Scalar(range.lower[0], range.lower[1], range.lower[2]),
               cv::Scalar(range.upper[0], range.upper[1], range.upper[2]), mask);
   cv::morphologyEx(mask, mask, cv::MORPH_OPEN, kernel, cv::Point(-1, -1), 2);
+  if (cv::countNonZero(mask) == 0) return {};  // nothing of this colour: the remaining steps find no contour
   cv::dilate(mask, mask, kernel);
   cv::Mat distance;
   cv::distanceTransform(mask, distance, cv::DIST_L2, cv::DIST_MASK_5);
@@ -63,6 +64,37 @@ std::vector<std::vector<cv::Point>> contours_of(const cv::Mat& small_hsv, const 
   std::vector<cv::Vec4i> hierarchy;
   cv::findContours(foreground, contours, hierarchy, cv::RETR_TREE, cv::CHAIN_APPROX_TC89_KCOS);
   return contours;
+}
+
+/// BGR → HSV, then a bilinear resize to `size` (the real node's order). Bilinear interpolation reads only the two
+/// source rows around each destination row, so only those rows (with a one-row margin) are converted; the others
+/// stay zero and are never read. The result is identical to converting the whole image.
+cv::Mat downsampled_hsv(const cv::Mat& bgr, cv::Size size) {
+  std::vector<char> needed(static_cast<std::size_t>(bgr.rows), 0);
+  const double scale_y = static_cast<double>(bgr.rows) / size.height;
+  for (int dy = 0; dy < size.height; ++dy) {
+    // OpenCV computes the source row in single precision; mark the rows of both roundings.
+    const int sy_double = static_cast<int>(std::floor((dy + 0.5) * scale_y - 0.5));
+    const int sy_float = static_cast<int>(std::floor(static_cast<float>((dy + 0.5) * scale_y - 0.5)));
+    for (const int sy : {sy_double, sy_float}) {
+      for (int y = sy; y <= sy + 1; ++y) needed[static_cast<std::size_t>(std::clamp(y, 0, bgr.rows - 1))] = 1;
+    }
+  }
+  cv::Mat hsv = cv::Mat::zeros(bgr.size(), CV_8UC3);
+  for (int y = 0; y < bgr.rows;) {
+    if (!needed[static_cast<std::size_t>(y)]) {
+      ++y;
+      continue;
+    }
+    int end = y;
+    while (end < bgr.rows && needed[static_cast<std::size_t>(end)]) ++end;
+    cv::Mat rows = hsv.rowRange(y, end);
+    cv::cvtColor(bgr.rowRange(y, end), rows, cv::COLOR_BGR2HSV);
+    y = end;
+  }
+  cv::Mat small;
+  cv::resize(hsv, small, size, 0, 0, cv::INTER_LINEAR);
+  return small;
 }
 
 }  // namespace
@@ -90,12 +122,9 @@ ZoneMap ZoneMap::segment(const cv::Mat& bgr, double metres_per_pixel) {
   if (!(metres_per_pixel > 0.0) || !std::isfinite(metres_per_pixel)) {
     throw InputError("metres per pixel must be positive", "metres_per_pixel", "> 0");
   }
-  cv::Mat hsv;
-  cv::cvtColor(bgr, hsv, cv::COLOR_BGR2HSV);
   const int small_height =
       std::max(1, static_cast<int>(std::lround(static_cast<double>(bgr.rows) * kZoneSegmentationWidthPx / bgr.cols)));
-  cv::Mat small;
-  cv::resize(hsv, small, cv::Size(kZoneSegmentationWidthPx, small_height));
+  const cv::Mat small = downsampled_hsv(bgr, cv::Size(kZoneSegmentationWidthPx, small_height));
   const double scale_x = static_cast<double>(bgr.cols) / kZoneSegmentationWidthPx;
   const double scale_y = static_cast<double>(bgr.rows) / small_height;
 

@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
+#include <opencv2/imgproc.hpp>
+
 #include "freeplay/core/error.hpp"
 #include "freeplay/sim/canvas.hpp"
 #include "freeplay/sim/zones.hpp"
@@ -168,6 +172,60 @@ TEST(Zones, RangesAndMarkerColoursAreTheRealOnes) {
   EXPECT_GT(blue[2], blue[1]);
   const auto red = zone_marker_rgb("red");
   EXPECT_GT(red[0], red[1]);
+}
+
+}  // namespace
+}  // namespace freeplay::sim
+
+namespace freeplay::sim {
+namespace {
+
+// The segmentation converts only the rows the bilinear downsampling reads; it must equal the plain pipeline.
+TEST(Zones, RowSkippingEqualsTheFullResolutionPipeline) {
+  DrawingCanvas canvas(kScreenWidthPx);
+  canvas.set_background(BackgroundKind::FreeplayMap);
+  canvas.begin_stroke(1, PaletteColour::Red, {0.31, -0.21});
+  canvas.extend_stroke(1, {0.36, -0.23});
+  canvas.extend_stroke(1, {0.40, -0.19});
+  canvas.end_stroke(1);
+  for (const int width : {kScreenWidthPx, 1000, 777}) {
+    cv::Mat image;
+    cv::resize(canvas.image(), image, cv::Size(width, raster_height(width)), 0, 0, cv::INTER_AREA);
+    // The real node, step by step.
+    cv::Mat hsv, small;
+    cv::cvtColor(image, hsv, cv::COLOR_BGR2HSV);
+    const int small_height = static_cast<int>(std::lround(image.rows * 200.0 / image.cols));
+    cv::resize(hsv, small, cv::Size(200, small_height));
+    const cv::Mat kernel = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(3, 3));
+    std::vector<Polygon2> expected;
+    for (const auto colour : kZoneColours) {
+      const HsvRange r = zone_hsv_range(colour);
+      cv::Mat mask, distance, foreground;
+      cv::inRange(small, cv::Scalar(r.lower[0], r.lower[1], r.lower[2]), cv::Scalar(r.upper[0], r.upper[1], r.upper[2]),
+                  mask);
+      cv::morphologyEx(mask, mask, cv::MORPH_OPEN, kernel, cv::Point(-1, -1), 2);
+      cv::dilate(mask, mask, kernel);
+      cv::distanceTransform(mask, distance, cv::DIST_L2, cv::DIST_MASK_5);
+      double max_distance = 0;
+      cv::minMaxLoc(distance, nullptr, &max_distance);
+      cv::threshold(distance, foreground, 0.25 * max_distance, 255, cv::THRESH_BINARY);
+      foreground.convertTo(foreground, CV_8U);
+      cv::dilate(foreground, foreground, kernel, cv::Point(-1, -1), 2);
+      std::vector<std::vector<cv::Point>> contours;
+      cv::findContours(foreground, contours, cv::RETR_TREE, cv::CHAIN_APPROX_TC89_KCOS);
+      const double mpp = kScreenWidthM / width;
+      for (const auto& contour : contours) {
+        Polygon2 polygon;
+        for (const auto& p : contour) {
+          polygon.emplace_back(p.x * (width / 200.0) * mpp, -p.y * (static_cast<double>(image.rows) / small_height) * mpp);
+        }
+        expected.push_back(polygon);
+      }
+    }
+    const ZoneMap zones = ZoneMap::segment(image, kScreenWidthM / width);
+    ASSERT_EQ(zones.zones().size(), expected.size()) << width;
+    for (std::size_t i = 0; i < expected.size(); ++i) EXPECT_EQ(zones.zones()[i].polygon, expected[i]) << width;
+  }
 }
 
 }  // namespace
