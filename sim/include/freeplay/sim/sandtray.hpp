@@ -8,6 +8,8 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -23,6 +25,12 @@ namespace freeplay::sim {
 class ItemCatalogue;
 class ZoneMap;
 
+/// Box2D length units per metre inside the sandtray world: the real game's qml-box2d scale (32 px per unit at
+/// 0.0003125 m/px = 1 cm per unit), so items are 2.4–8.4 units, inside Box2D's tuned 0.1–10 range.
+inline constexpr double kPhysicsUnitsPerMetre = 100.0;
+/// Box2D length units per metre of the real QML world (pixelsPerMeter 32 at 1920 px), for unit conversions.
+inline constexpr double kQmlUnitsPerMetre = 1.0 / (32.0 * kMetresPerPixel);
+
 /// The game's global states (QML `globalstates`) and their trigger signals.
 enum class GameState { Blank, Tutorial, FreePlay, ItemsPlacement };
 
@@ -30,10 +38,22 @@ enum class GameState { Blank, Tutorial, FreePlay, ItemsPlacement };
 enum class Signal { BlankInterface, StartTutorial, StartFreeplay, StartItemsPlacement, ClearDrawing, ShuffleItems,
                     ItemsToStash };
 
+/// Lower-case name of a state ("blank", "tutorial", "freeplay", "items_placement").
+std::string_view game_state_name(GameState state);
+/// The topic suffix of a signal (`sandtray/signals/<name>`, e.g. "start_freeplay", "clear_drawing").
+std::string_view signal_name(Signal s);
+/// Signal from its topic suffix; nullopt when unknown.
+std::optional<Signal> signal_from_name(std::string_view name);
+/// Comma-separated signal names (for error messages).
+std::string signal_names();
+
 /// Who is holding an item.
 struct Holder {
   enum class Kind { None, Finger, Robot } kind = Kind::None;  ///< nobody, a child's finger, the robot finger
   int finger = 0;                                              ///< 1…6 when kind == Finger
+
+  /// Holders are equal when they are the same kind and finger.
+  bool operator==(const Holder&) const = default;
 };
 
 /// What a press did.
@@ -45,7 +65,8 @@ struct ItemState {
   Pose2 pose;          ///< item centre in `sandtray`, θ = −screen rotation
   int z = 0;           ///< stacking order (higher is on top)
   bool visible = true; ///< hidden items (tutorial) still publish TF but cannot be touched
-  Holder holder;       ///< who drags it now
+  Holder holder;       ///< who drags it now (a finger before the robot when both do)
+  std::vector<Holder> holders;  ///< everyone dragging it (fingers ascending, then the robot); both joints act
 };
 
 /// An active finger (`touch1` … `touch6`).
@@ -90,16 +111,32 @@ class Sandtray {
   void touch_up(int finger);
   /// Selects the global brush colour, as a tap on the palette swatch does.
   void select_colour(PaletteColour colour);
+  /// Selects the brush colour by name ("yellow", …, "eraser"); throws InputError listing the palette names.
+  void select_colour(std::string_view colour_name);
+  /// The current brush colour (the real game starts with no swatch selected, which erases).
+  PaletteColour colour() const;
+  /// True when a press on the background starts a stroke (free-play state).
+  bool drawing_enabled() const;
 
   // --- the robot's virtual finger (`/poses`) ----------------------------------------------------------------
   /// One `/poses` message: grabs the item under the first pose of a stream, then drags it.
   void robot_pose(const Vec2& p);
+  /// The item the robot finger holds now, if any.
+  std::optional<std::string> robot_item() const;
+  /// Where the robot's hand sprite is shown (last pose, until the 1 s release timer expires).
+  std::optional<Vec2> robot_hand() const;
 
   // --- time ---------------------------------------------------------------------------------------------------
   /// Advances the game by `dt` seconds (physics at 60 Hz substeps, timers, background republication).
   void step(double dt);
   /// Simulated time since construction (s).
   double time() const;
+  /// Number of whole 10 Hz game ticks elapsed: the episode loop publishes items/touches when it changes.
+  std::int64_t tick_count() const;
+  /// Number of b2World::Step calls made so far (an idle, all-asleep tray takes none).
+  std::uint64_t physics_steps() const;
+  /// True when no item body is awake (the next physics steps will be skipped).
+  bool asleep() const;
 
   // --- state out --------------------------------------------------------------------------------------------
   /// Every item's state, in catalogue order.
@@ -128,6 +165,10 @@ class Sandtray {
   std::vector<Event> drain_events();
   /// Hash of the full dynamic state (item poses/velocities, touches, strokes, timers, state).
   std::uint64_t state_hash() const;
+  /// The catalogue the tray was built from.
+  const ItemCatalogue& catalogue() const;
+  /// The configuration the tray was built with.
+  const SandtrayConfig& config() const;
 
  private:
   struct Impl;

@@ -1,0 +1,93 @@
+// Raster speed: zone segmentation per background update, screen image, background rasterisation, strokes.
+
+#include <benchmark/benchmark.h>
+
+#include "freeplay/sim/background.hpp"
+#include "freeplay/sim/canvas.hpp"
+#include "freeplay/sim/item_catalogue.hpp"
+#include "freeplay/sim/screen_renderer.hpp"
+#include "freeplay/sim/zones.hpp"
+
+namespace freeplay::sim {
+namespace {
+
+/// Zone segmentation of the 1920-wide map with a drawing on it (what each background republication costs).
+void BM_ZoneSegmentation(benchmark::State& state) {
+  DrawingCanvas canvas(kScreenWidthPx);
+  canvas.set_background(BackgroundKind::FreeplayMap);
+  canvas.begin_stroke(1, PaletteColour::Blue, {0.35, -0.25});
+  canvas.extend_stroke(1, {0.42, -0.28});
+  canvas.end_stroke(1);
+  std::size_t zones = 0;
+  for (auto _ : state) {
+    const ZoneMap map = ZoneMap::segment(canvas.image(), kMetresPerPixel);
+    zones = map.zones().size();
+    benchmark::DoNotOptimize(zones);
+  }
+  state.counters["zones"] = static_cast<double>(zones);
+}
+BENCHMARK(BM_ZoneSegmentation)->Unit(benchmark::kMillisecond);
+
+/// The full screen image (map + strokes, stash, palette, all 10 items rotated, touches, robot hand).
+void BM_ScreenImage(benchmark::State& state) {
+  const int width = static_cast<int>(state.range(0));
+  const ItemCatalogue catalogue = ItemCatalogue::load_default();
+  const ScreenRenderer renderer(catalogue);
+  DrawingCanvas canvas(kScreenWidthPx);
+  canvas.set_background(BackgroundKind::FreeplayMap);
+  std::vector<ItemView> items;
+  int z = 0;
+  for (const ItemSpec& spec : catalogue.items()) {
+    items.push_back({&spec, {0.05 + 0.05 * z, -0.1 - 0.015 * (z % 4), 0.37 * z}, z, true});
+    ++z;
+  }
+  ScreenOverlay overlay;
+  overlay.touches = {{0.1, -0.3}, {0.2, -0.25}};
+  overlay.robot_hand = Vec2(0.4, -0.2);
+  overlay.palette_visible = true;
+  renderer.render(canvas.image(), items, overlay, width);  // fills the picture cache
+  for (auto _ : state) {
+    cv::Mat screen = renderer.render(canvas.image(), items, overlay, width);
+    benchmark::DoNotOptimize(screen.data);
+  }
+}
+BENCHMARK(BM_ScreenImage)->Arg(1920)->Arg(960)->Unit(benchmark::kMillisecond);
+
+/// Rasterising the map description (each StartFreeplay / StartItemsPlacement).
+void BM_RenderMap(benchmark::State& state) {
+  for (auto _ : state) {
+    cv::Mat map = render_background(BackgroundKind::FreeplayMap, kScreenWidthPx);
+    benchmark::DoNotOptimize(map.data);
+  }
+}
+BENCHMARK(BM_RenderMap)->Unit(benchmark::kMillisecond);
+
+/// One finger move while drawing (a quadratic segment of a 50 px stroke at 1920 px).
+void BM_StrokeSegment(benchmark::State& state) {
+  DrawingCanvas canvas(kScreenWidthPx);
+  canvas.set_background(BackgroundKind::FreeplayMap);
+  canvas.begin_stroke(1, PaletteColour::Red, {0.1, -0.1});
+  double x = 0.1;
+  for (auto _ : state) {
+    x = x > 0.5 ? 0.1 : x + 0.005;
+    canvas.extend_stroke(1, {x, -0.1 - 0.05 * (x - 0.1)});
+  }
+}
+BENCHMARK(BM_StrokeSegment)->Unit(benchmark::kMicrosecond);
+
+/// Canvas hash and coverage after a change (state hashing, statistics).
+void BM_CanvasHash(benchmark::State& state) {
+  DrawingCanvas canvas(kScreenWidthPx);
+  canvas.set_background(BackgroundKind::FreeplayMap);
+  canvas.begin_stroke(1, PaletteColour::Red, {0.1, -0.1});
+  double x = 0.1;
+  for (auto _ : state) {
+    x = x > 0.5 ? 0.1 : x + 0.005;
+    canvas.extend_stroke(1, {x, -0.1});
+    benchmark::DoNotOptimize(canvas.hash());
+  }
+}
+BENCHMARK(BM_CanvasHash)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace freeplay::sim

@@ -1,0 +1,64 @@
+#pragma once
+// Colour zones of the background (the real `zones_from_image` node): HSV ranges → polygons in `sandtray`.
+
+#include <array>
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "freeplay/core/geometry.hpp"
+
+namespace freeplay::sim {
+
+/// One colour region of the background (one LINE_STRIP marker of the real `zones` topic).
+struct Zone {
+  std::string colour;  ///< zone name = colour ("green", "blue", …), marker ns `sandbox_zone_<colour>`
+  int id = 0;          ///< 0.. per colour, in contour order
+  Polygon2 polygon;    ///< contour in the `sandtray` frame (m; y ≤ 0), not closed
+  Vec2 centroid;       ///< vertex mean (what the play policy uses)
+  double area_m2 = 0;  ///< enclosed area (m², absolute value)
+};
+
+/// The zone colours, in the order the real node processes them.
+inline constexpr std::array<std::string_view, 7> kZoneColours = {"green", "blue",   "yellow", "white",
+                                                                 "black", "purple", "red"};
+
+/// An inclusive HSV range (OpenCV units: H 0–179, S and V 0–255).
+struct HsvRange {
+  std::array<int, 3> lower;  ///< (H, S, V) lower bound
+  std::array<int, 3> upper;  ///< (H, S, V) upper bound
+};
+
+/// The real node's HSV range of a zone colour; throws InputError listing kZoneColours when unknown.
+HsvRange zone_hsv_range(std::string_view colour);
+/// Marker colour of a zone (HSV-range midpoint converted to RGB, as the real node does).
+std::array<unsigned char, 3> zone_marker_rgb(std::string_view colour);
+/// Width the real node downsamples the image to before segmenting (pixels).
+inline constexpr int kZoneSegmentationWidthPx = 200;
+
+/// The zones of one background image (immutable once built).
+class ZoneMap {
+ public:
+  /// No zones.
+  ZoneMap() = default;
+  /// Segments a BGR CV_8UC3 image with the real pipeline; `metres_per_pixel` of the full-resolution image.
+  /// Throws InputError on an empty image, another type, or a non-positive scale.
+  static ZoneMap segment(const cv::Mat& bgr, double metres_per_pixel);
+
+  /// Every zone, colour by colour in kZoneColours order, ids ascending.
+  const std::vector<Zone>& zones() const { return zones_; }
+  /// Zones of one colour; throws InputError listing kZoneColours when the colour is unknown.
+  std::vector<const Zone*> of_colour(std::string_view colour) const;
+  /// The zone containing `p` (the smallest if several), nullptr if none.
+  const Zone* at(const Vec2& p) const;
+  /// Number of zones of a colour; throws InputError listing kZoneColours when the colour is unknown.
+  std::size_t count(std::string_view colour) const;
+
+ private:
+  std::vector<Zone> zones_;
+};
+
+}  // namespace freeplay::sim

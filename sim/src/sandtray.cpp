@@ -1,0 +1,844 @@
+#include "freeplay/sim/sandtray.hpp"
+
+#include <box2d/box2d.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <numbers>
+
+#include "freeplay/core/error.hpp"
+#include "freeplay/sim/canvas.hpp"
+#include "freeplay/sim/item_catalogue.hpp"
+#include "freeplay/sim/screen_renderer.hpp"
+#include "freeplay/sim/zones.hpp"
+
+namespace freeplay::sim {
+
+std::string_view game_state_name(GameState state) {
+  switch (state) {
+    case GameState::Blank: return "blank";
+    case GameState::Tutorial: return "tutorial";
+    case GameState::FreePlay: return "freeplay";
+    case GameState::ItemsPlacement: return "items_placement";
+  }
+  return "blank";
+}
+
+namespace {
+
+constexpr std::array<std::pair<Signal, std::string_view>, 7> kSignalNames = {{
+    {Signal::BlankInterface, "blank_interface"},
+    {Signal::StartTutorial, "start_tutorial"},
+    {Signal::StartFreeplay, "start_freeplay"},
+    {Signal::StartItemsPlacement, "start_items_placement"},
+    {Signal::ClearDrawing, "clear_drawing"},
+    {Signal::ShuffleItems, "shuffle_items"},
+    {Signal::ItemsToStash, "items_to_stash"},
+}};
+
+using Nanoseconds = std::int64_t;
+constexpr Nanoseconds kSecond = 1'000'000'000;
+constexpr Nanoseconds kNever = std::numeric_limits<Nanoseconds>::max();
+constexpr Nanoseconds kRobotReleaseDelayNs = static_cast<Nanoseconds>(kRobotReleaseDelayS * 1e9);
+constexpr Nanoseconds kBackgroundPeriodNs = static_cast<Nanoseconds>(kBackgroundPeriodS * 1e9);
+constexpr Nanoseconds kGameTickNs = static_cast<Nanoseconds>(1e9 / kGameTickHz);
+constexpr int kPhysicsRateHz = 60;  // kPhysicsStepS = 1/60 s
+constexpr int kVelocityIterations = 8;
+constexpr int kPositionIterations = 3;
+/// Incoming robot poses that move less than this are ignored, as the real RosPoseSubscriber (EPSILON = 0.5 px).
+constexpr double kRobotPoseEpsilonM = 0.5 * kMetresPerPixel;
+/// Wall thickness (m). The real walls are 32 px (1 cm); thicker walls behave the same and cannot be crossed by
+/// an item that starts overlapping one (stash placement near the edges).
+constexpr double kWallThicknessM = 0.05;
+constexpr std::uint16_t kWallCategory = 0x0001;
+constexpr std::uint16_t kItemCategory = 0x0002;
+/// Maximum drag acceleration of the real game: maxForce = 500 × mass in QML Box2D units (1 unit = 1 cm).
+constexpr double kQmlMaxAccelerationToUnits = kPhysicsUnitsPerMetre / kQmlUnitsPerMetre;
+
+b2Vec2 to_b2(const Vec2& p) {
+  return {static_cast<float>(p.x() * kPhysicsUnitsPerMetre), static_cast<float>(p.y() * kPhysicsUnitsPerMetre)};
+}
+Vec2 from_b2(const b2Vec2& v) {
+  return {static_cast<double>(v.x) / kPhysicsUnitsPerMetre, static_cast<double>(v.y) / kPhysicsUnitsPerMetre};
+}
+
+bool finite(const Vec2& p) { return std::isfinite(p.x()) && std::isfinite(p.y()); }
+
+std::string touch_frame(int finger) { return fmt::format("touch{}", finger); }
+
+/// FNV-1a accumulation of raw bytes (bit-exact state hashing).
+class Hasher {
+ public:
+  template <typename T>
+  void add(const T& value) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    unsigned char bytes[sizeof(T)];
+    std::memcpy(bytes, &value, sizeof(T));
+    for (unsigned char b : bytes) {
+      hash_ ^= b;
+      hash_ *= 1099511628211ULL;
+    }
+  }
+  std::uint64_t value() const { return hash_; }
+
+ private:
+  std::uint64_t hash_ = 14695981039346656037ULL;
+};
+
+}  // namespace
+
+std::string_view signal_name(Signal s) {
+  for (const auto& [signal, name] : kSignalNames) {
+    if (signal == s) return name;
+  }
+  return "";
+}
+
+std::optional<Signal> signal_from_name(std::string_view name) {
+  for (const auto& [signal, signal_text] : kSignalNames) {
+    if (signal_text == name) return signal;
+  }
+  return std::nullopt;
+}
+
+std::string signal_names() {
+  std::string out;
+  for (const auto& entry : kSignalNames) {
+    if (!out.empty()) out += ", ";
+    out += entry.second;
+  }
+  return out;
+}
+
+struct Sandtray::Impl {
+  /// What a finger that is down is doing.
+  enum class FingerMode { Idle, Item, Stroke };
+  struct Finger {
+    bool down = false;
+    FingerMode mode = FingerMode::Idle;
+    Vec2 position = Vec2::Zero();
+    int item = -1;
+    b2MouseJoint* joint = nullptr;
+  };
+  struct Robot {
+    int item = -1;
+    b2MouseJoint* joint = nullptr;
+    std::optional<Vec2> hand;            // hand sprite position while shown
+    std::optional<Vec2> last_pose;       // last accepted pose (persists, for the 0.5 px filter)
+    Nanoseconds deadline = kNever;       // release timer
+  };
+  struct Item {
+    const ItemSpec* spec = nullptr;
+    b2Body* body = nullptr;
+    int z = 0;
+    bool visible = true;
+  };
+
+  Impl(std::shared_ptr<const ItemCatalogue> catalogue_in, SandtrayConfig config_in, Rng rng_in)
+      : catalogue(std::move(catalogue_in)),
+        config(config_in),
+        rng(rng_in),
+        world(b2Vec2(0.0F, 0.0F)),
+        canvas(config.raster_width_px),
+        renderer(*catalogue) {}
+
+  std::shared_ptr<const ItemCatalogue> catalogue;
+  SandtrayConfig config;
+  Rng rng;
+  b2World world;
+  b2Body* anchor = nullptr;
+  std::vector<Item> items;
+  std::array<Finger, kMaxTouches + 1> fingers{};  // index 1…6
+  Robot robot;
+  GameState state = GameState::Blank;
+  PaletteColour colour = PaletteColour::Eraser;
+  bool drawing = false;
+  bool items_collide = true;
+  DrawingCanvas canvas;
+  cv::Mat published_background;
+  ZoneMap zone_map;
+  std::uint64_t background_version = 0;
+  bool publish_requested = false;
+  ScreenRenderer renderer;
+  Nanoseconds now = 0;
+  std::int64_t physics_slots = 0;      // 1/60 s slots elapsed (stepped or skipped)
+  std::uint64_t physics_steps = 0;     // b2World::Step calls
+  Nanoseconds next_poll = kBackgroundPeriodNs;
+  std::vector<Event> events;
+
+  // --- construction ---------------------------------------------------------------------------------------
+  void build_world() {
+    world.SetAllowSleeping(true);
+    b2BodyDef anchor_def;
+    anchor_def.type = b2_staticBody;
+    anchor = world.CreateBody(&anchor_def);
+    // The walls live on their own static body: bodies joined by a joint do not collide (collideConnected is
+    // false), so walls on the joints' anchor body would let a dragged item through.
+    b2Body* walls_body = world.CreateBody(&anchor_def);
+    const double t = kWallThicknessM;
+    const double w = kScreenWidthM;
+    const double h = kScreenHeightM;
+    // {centre x, centre y, half width, half height} just outside each edge, overlapping at the corners.
+    const std::array<std::array<double, 4>, 4> walls = {{{-t / 2, -h / 2, t / 2, h / 2 + t},
+                                                        {w + t / 2, -h / 2, t / 2, h / 2 + t},
+                                                        {w / 2, t / 2, w / 2 + t, t / 2},
+                                                        {w / 2, -h - t / 2, w / 2 + t, t / 2}}};
+    for (const auto& wall : walls) {
+      b2PolygonShape box;
+      box.SetAsBox(static_cast<float>(wall[2] * kPhysicsUnitsPerMetre),
+                   static_cast<float>(wall[3] * kPhysicsUnitsPerMetre), to_b2(Vec2(wall[0], wall[1])), 0.0F);
+      b2FixtureDef fixture;
+      fixture.shape = &box;
+      fixture.density = 1.0F;
+      fixture.friction = 1.0F;
+      fixture.filter.categoryBits = kWallCategory;
+      walls_body->CreateFixture(&fixture);
+    }
+    for (const auto& spec : catalogue->items()) {
+      b2BodyDef def;
+      def.type = b2_dynamicBody;
+      def.linearDamping = static_cast<float>(config.linear_damping);
+      def.angularDamping = static_cast<float>(config.angular_damping);
+      b2Body* body = world.CreateBody(&def);
+      std::array<b2Vec2, b2_maxPolygonVertices> vertices{};
+      for (std::size_t i = 0; i < spec.polygon.size(); ++i) vertices[i] = to_b2(spec.polygon[i]);
+      b2PolygonShape shape;
+      shape.Set(vertices.data(), static_cast<int>(spec.polygon.size()));
+      b2FixtureDef fixture;
+      fixture.shape = &shape;
+      fixture.density = static_cast<float>(spec.density);
+      fixture.friction = static_cast<float>(spec.friction);
+      fixture.restitution = static_cast<float>(spec.restitution);
+      fixture.filter.categoryBits = kItemCategory;
+      body->CreateFixture(&fixture);
+      items.push_back(Item{&spec, body, 0, true});
+    }
+    set_item_collisions(config.item_collisions);
+  }
+
+  // --- helpers --------------------------------------------------------------------------------------------
+  Pose2 pose_of(const Item& item) const {
+    const b2Vec2 p = item.body->GetPosition();
+    const Vec2 position = from_b2(p);
+    return {position.x(), position.y(), wrap_angle(static_cast<double>(item.body->GetAngle()))};
+  }
+
+  double seconds() const { return static_cast<double>(now) * 1e-9; }
+
+  void emit(std::string type, nlohmann::json data) {
+    events.push_back(Event{seconds(), "sandtray", std::move(type), std::move(data)});
+  }
+
+  int item_index_at(const Vec2& p) const {
+    if (state == GameState::Blank) return -1;
+    int best = -1;
+    for (std::size_t i = 0; i < items.size(); ++i) {
+      const Item& item = items[i];
+      if (!item.visible) continue;
+      if (best >= 0 && item.z < items[static_cast<std::size_t>(best)].z) continue;
+      if (point_in_polygon(item.spec->polygon, pose_of(item).to_local(p))) best = static_cast<int>(i);
+    }
+    return best;
+  }
+
+  std::vector<Holder> holders_of(int index) const {
+    std::vector<Holder> out;
+    for (int f = 1; f <= kMaxTouches; ++f) {
+      const Finger& finger = fingers[static_cast<std::size_t>(f)];
+      if (finger.down && finger.mode == FingerMode::Item && finger.item == index) {
+        out.push_back(Holder{Holder::Kind::Finger, f});
+      }
+    }
+    if (robot.item == index) out.push_back(Holder{Holder::Kind::Robot, 0});
+    return out;
+  }
+
+  static nlohmann::json holder_json(const Holder& holder) {
+    if (holder.kind == Holder::Kind::Robot) return {{"holder", "robot"}};
+    return {{"holder", "finger"}, {"finger", holder.finger}};
+  }
+
+  b2MouseJoint* attach(int index, const Vec2& target) {
+    b2Body* body = items[static_cast<std::size_t>(index)].body;
+    b2MouseJointDef def;
+    def.bodyA = anchor;
+    def.bodyB = body;
+    def.target = to_b2(target);
+    // maxForce = mass × 500 in the game's units is an acceleration cap of 500 QML units/s² (= 5 m/s²).
+    def.maxForce = static_cast<float>(config.joint_max_force_per_kg * kQmlMaxAccelerationToUnits) *
+                   body->GetMass();
+    b2LinearStiffness(def.stiffness, def.damping, static_cast<float>(config.joint_frequency_hz),
+                      static_cast<float>(config.joint_damping_ratio), def.bodyA, def.bodyB);
+    body->SetAwake(true);
+    return static_cast<b2MouseJoint*>(world.CreateJoint(&def));
+  }
+
+  void grabbed_event(int index, const Holder& holder) {
+    nlohmann::json data = holder_json(holder);
+    data["item"] = items[static_cast<std::size_t>(index)].spec->name;
+    nlohmann::json others = nlohmann::json::array();
+    for (const Holder& other : holders_of(index)) {
+      if (other == holder) continue;
+      others.push_back(other.kind == Holder::Kind::Robot ? std::string("robot") : touch_frame(other.finger));
+    }
+    data["shared_with"] = others;
+    emit("item_grabbed", std::move(data));
+  }
+
+  void released_event(int index, const Holder& holder, const char* reason) {
+    nlohmann::json data = holder_json(holder);
+    data["item"] = items[static_cast<std::size_t>(index)].spec->name;
+    data["reason"] = reason;
+    emit("item_released", std::move(data));
+  }
+
+  void release_finger(int f, const char* reason) {
+    Finger& finger = fingers[static_cast<std::size_t>(f)];
+    if (finger.mode == FingerMode::Item) {
+      world.DestroyJoint(finger.joint);
+      const int index = finger.item;
+      finger.joint = nullptr;
+      finger.item = -1;
+      finger.mode = FingerMode::Idle;
+      released_event(index, Holder{Holder::Kind::Finger, f}, reason);
+    } else if (finger.mode == FingerMode::Stroke) {
+      canvas.end_stroke(f);
+      finger.mode = FingerMode::Idle;
+      publish_requested = true;
+      emit("stroke_finished", {{"finger", f}});
+    }
+  }
+
+  void release_robot(const char* reason) {
+    if (robot.item >= 0) {
+      const int index = robot.item;
+      world.DestroyJoint(robot.joint);
+      robot.joint = nullptr;
+      robot.item = -1;
+      if (std::string_view(reason) == "timeout") {
+        emit("interaction_event", {{"message", "releasing_" + items[static_cast<std::size_t>(index)].spec->name}});
+      }
+      released_event(index, Holder{Holder::Kind::Robot, 0}, reason);
+    }
+    robot.hand.reset();
+    robot.deadline = kNever;
+  }
+
+  void place(Item& item, const Vec2& centre, double theta) {
+    item.body->SetTransform(to_b2(centre), static_cast<float>(theta));
+    item.body->SetLinearVelocity(b2Vec2(0.0F, 0.0F));
+    item.body->SetAngularVelocity(0.0F);
+    if (item.body->IsEnabled()) item.body->SetAwake(true);
+  }
+
+  double random_theta() { return -rng.uniform(0.0, 360.0) * std::numbers::pi / 180.0; }
+
+  void items_to_stash() {
+    const double stash_width = kScreenWidthM - kStashMinX;
+    const double half_base = 0.5 * kItemBaseSideM;  // QML x/y is the unscaled box corner; scale is about the centre
+    for (Item& item : items) {
+      const double left = kStashMinX + 10.0 * kMetresPerPixel + rng.uniform() * stash_width / 2.0;
+      const double top = rng.uniform() * 0.9 * kScreenHeightM;
+      const double theta = random_theta();
+      place(item, Vec2(left + half_base, -(top + half_base)), theta);
+    }
+  }
+
+  void shuffle_items() {
+    for (Item& item : items) {
+      const double x = rng.uniform(0.1, 0.9) * kScreenWidthM;
+      const double y = -rng.uniform(0.1, 0.9) * kScreenHeightM;
+      const double theta = random_theta();
+      place(item, Vec2(x, y), theta);
+    }
+  }
+
+  void set_item_collisions(bool collide) {
+    items_collide = collide;
+    for (Item& item : items) {
+      b2Fixture* fixture = item.body->GetFixtureList();
+      b2Filter filter = fixture->GetFilterData();
+      filter.maskBits = collide ? 0xFFFF : kWallCategory;
+      fixture->SetFilterData(filter);
+    }
+  }
+
+  void set_visible(std::size_t index, bool visible) {
+    Item& item = items[index];
+    if (!visible) {
+      for (int f = 1; f <= kMaxTouches; ++f) {
+        if (fingers[static_cast<std::size_t>(f)].item == static_cast<int>(index)) release_finger(f, "hidden");
+      }
+      if (robot.item == static_cast<int>(index)) release_robot("hidden");
+    }
+    item.visible = visible;
+    item.body->SetEnabled(visible);
+  }
+
+  void set_drawing(bool enabled) {
+    if (drawing != enabled) {
+      drawing = enabled;
+      emit("background_drawing", {{"enabled", enabled}});
+    }
+  }
+
+  void publish_background() {
+    published_background = canvas.image().clone();
+    zone_map = ZoneMap::segment(published_background, kScreenWidthM / static_cast<double>(canvas.width_px()));
+    canvas.mark_published();
+    publish_requested = false;
+    ++background_version;
+    emit("background_published", {{"version", background_version}});
+  }
+
+  void enter_state(GameState next) {
+    for (int f = 1; f <= kMaxTouches; ++f) {
+      if (fingers[static_cast<std::size_t>(f)].mode == FingerMode::Stroke) release_finger(f, "state_change");
+    }
+    const auto show_only = [&](std::initializer_list<std::string_view> shown, bool invert) {
+      for (std::size_t i = 0; i < items.size(); ++i) {
+        const bool listed = std::find(shown.begin(), shown.end(), items[i].spec->name) != shown.end();
+        set_visible(i, listed != invert);
+      }
+    };
+    state = next;
+    switch (next) {
+      case GameState::Blank:
+        for (int f = 1; f <= kMaxTouches; ++f) release_finger(f, "state_change");
+        release_robot("state_change");
+        show_only({}, true);
+        set_drawing(false);
+        set_item_collisions(config.item_collisions);
+        canvas.set_background(BackgroundKind::Blank);
+        break;
+      case GameState::Tutorial:
+        show_only({"boy", "girl"}, false);
+        set_drawing(false);
+        set_item_collisions(config.item_collisions);
+        canvas.set_background(BackgroundKind::Tutorial);
+        items_to_stash();
+        break;
+      case GameState::FreePlay:
+        show_only({}, true);
+        set_drawing(true);
+        set_item_collisions(config.item_collisions);
+        canvas.set_background(BackgroundKind::FreeplayMap);
+        items_to_stash();
+        break;
+      case GameState::ItemsPlacement:
+        show_only({"girl", "caravan"}, true);
+        set_drawing(false);
+        set_item_collisions(false);
+        canvas.set_background(BackgroundKind::FreeplayMap);
+        break;
+    }
+    emit("state_changed", {{"state", std::string(game_state_name(next))}});
+    publish_background();
+  }
+
+  // --- validation (before any mutation) ---------------------------------------------------------------------
+  static void check_finger_id(int finger) {
+    if (finger < 1 || finger > kMaxTouches) {
+      throw InputError(fmt::format("finger {} does not exist (the game tracks 6 touch points)", finger), "finger",
+                       "1…6");
+    }
+  }
+
+  static void check_point(const Vec2& p, const char* key) {
+    if (!finite(p)) throw InputError("point is not finite", key, "finite x, y in metres");
+    if (!on_screen(p)) {
+      throw InputError(fmt::format("point ({:.4f}, {:.4f}) is outside the screen", p.x(), p.y()), key,
+                       "x in [0, 0.6], y in [-0.335, 0] (sandtray frame, metres)");
+    }
+  }
+
+  const Finger& finger_down(int f) const {
+    check_finger_id(f);
+    const Finger& finger = fingers[static_cast<std::size_t>(f)];
+    if (!finger.down) throw InputError(fmt::format("finger {} is not down", f), "finger", "a finger that is down");
+    return finger;
+  }
+
+  // --- time -----------------------------------------------------------------------------------------------
+  static Nanoseconds slot_time(std::int64_t slot) { return slot * kSecond / kPhysicsRateHz; }
+
+  bool all_asleep() const {
+    return std::none_of(items.begin(), items.end(),
+                        [](const Item& item) { return item.body->IsEnabled() && item.body->IsAwake(); });
+  }
+
+  void advance(Nanoseconds target) {
+    while (true) {
+      const Nanoseconds next_physics = slot_time(physics_slots + 1);
+      const Nanoseconds next_event = std::min({next_physics, robot.deadline, next_poll});
+      if (next_event > target) break;
+      now = next_event;
+      if (robot.deadline == now) release_robot("timeout");
+      if (next_physics == now) {
+        ++physics_slots;
+        if (!all_asleep()) {
+          world.Step(static_cast<float>(kPhysicsStepS), kVelocityIterations, kPositionIterations);
+          ++physics_steps;
+        } else {
+          // Nothing can move until an input arrives: jump over the idle slots up to the next timer or `target`.
+          const Nanoseconds until = std::min({target, robot.deadline, next_poll});
+          const std::int64_t last_slot = until * kPhysicsRateHz / kSecond;
+          if (last_slot > physics_slots) physics_slots = last_slot;
+        }
+      }
+      if (next_poll == now) {
+        if (publish_requested) publish_background();
+        next_poll += kBackgroundPeriodNs;
+      }
+    }
+    now = target;
+  }
+
+  void hash_into(Hasher& h) const {
+    h.add(now);
+    h.add(physics_slots);
+    h.add(physics_steps);
+    h.add(next_poll);
+    h.add(state);
+    h.add(colour);
+    h.add(drawing);
+    h.add(items_collide);
+    h.add(publish_requested);
+    h.add(background_version);
+    Rng probe = rng;
+    h.add(probe());
+    for (const Item& item : items) {
+      const b2Transform& xf = item.body->GetTransform();
+      h.add(xf.p.x);
+      h.add(xf.p.y);
+      h.add(item.body->GetAngle());
+      h.add(item.body->GetLinearVelocity().x);
+      h.add(item.body->GetLinearVelocity().y);
+      h.add(item.body->GetAngularVelocity());
+      h.add(item.body->IsAwake());
+      h.add(item.body->IsEnabled());
+      h.add(item.z);
+      h.add(item.visible);
+    }
+    const auto hash_joint = [&h](const b2MouseJoint* joint) {
+      if (joint == nullptr) {
+        h.add(false);
+        return;
+      }
+      h.add(true);
+      h.add(joint->GetTarget().x);
+      h.add(joint->GetTarget().y);
+      h.add(joint->GetAnchorB().x);
+      h.add(joint->GetAnchorB().y);
+    };
+    for (int f = 1; f <= kMaxTouches; ++f) {
+      const Finger& finger = fingers[static_cast<std::size_t>(f)];
+      h.add(finger.down);
+      h.add(finger.mode);
+      h.add(finger.position.x());
+      h.add(finger.position.y());
+      h.add(finger.item);
+      hash_joint(finger.joint);
+    }
+    h.add(robot.item);
+    hash_joint(robot.joint);
+    h.add(robot.deadline);
+    h.add(robot.hand.has_value());
+    if (robot.hand) {
+      h.add(robot.hand->x());
+      h.add(robot.hand->y());
+    }
+    h.add(robot.last_pose.has_value());
+    if (robot.last_pose) {
+      h.add(robot.last_pose->x());
+      h.add(robot.last_pose->y());
+    }
+    h.add(canvas.hash());
+  }
+};
+
+Sandtray::Sandtray(std::shared_ptr<const ItemCatalogue> catalogue, SandtrayConfig config, Rng rng) {
+  if (!catalogue) throw InputError("no item catalogue given", "catalogue");
+  if (config.raster_width_px < 16 || config.raster_width_px > 16384) {
+    throw InputError(fmt::format("raster width {} px is out of range", config.raster_width_px), "raster_width_px",
+                     "16…16384");
+  }
+  const auto positive = [](double value, const char* key) {
+    if (!std::isfinite(value) || value <= 0.0) throw InputError("must be a positive number", key);
+  };
+  positive(config.joint_frequency_hz, "joint_frequency_hz");
+  positive(config.joint_damping_ratio, "joint_damping_ratio");
+  positive(config.joint_max_force_per_kg, "joint_max_force_per_kg");
+  if (!std::isfinite(config.linear_damping) || config.linear_damping < 0.0) {
+    throw InputError("must be a non-negative number", "linear_damping");
+  }
+  if (!std::isfinite(config.angular_damping) || config.angular_damping < 0.0) {
+    throw InputError("must be a non-negative number", "angular_damping");
+  }
+  impl_ = std::make_unique<Impl>(std::move(catalogue), config, rng);
+  impl_->build_world();
+  impl_->items_to_stash();
+  impl_->canvas.set_background(BackgroundKind::Blank);
+  impl_->publish_background();
+  impl_->events.clear();
+}
+
+Sandtray::~Sandtray() = default;
+
+void Sandtray::signal(Signal s) {
+  Impl& d = *impl_;
+  switch (s) {
+    case Signal::BlankInterface:
+    case Signal::StartTutorial:
+    case Signal::StartFreeplay:
+    case Signal::StartItemsPlacement: {
+      const GameState next = s == Signal::BlankInterface    ? GameState::Blank
+                             : s == Signal::StartTutorial   ? GameState::Tutorial
+                             : s == Signal::StartFreeplay   ? GameState::FreePlay
+                                                            : GameState::ItemsPlacement;
+      if (next != d.state) d.enter_state(next);
+      break;
+    }
+    case Signal::ClearDrawing:
+      for (int f = 1; f <= kMaxTouches; ++f) {
+        if (d.fingers[static_cast<std::size_t>(f)].mode == Impl::FingerMode::Stroke) {
+          d.release_finger(f, "clear_drawing");
+        }
+      }
+      d.canvas.clear_strokes();
+      d.publish_requested = true;
+      break;
+    case Signal::ShuffleItems: d.shuffle_items(); break;
+    case Signal::ItemsToStash: d.items_to_stash(); break;
+  }
+  d.emit("signal", {{"name", std::string(signal_name(s))}});
+}
+
+GameState Sandtray::state() const { return impl_->state; }
+
+TouchOutcome Sandtray::touch_down(int finger, const Vec2& p) {
+  Impl& d = *impl_;
+  Impl::check_finger_id(finger);
+  Impl::check_point(p, "touch position");
+  Impl::Finger& f = d.fingers[static_cast<std::size_t>(finger)];
+  if (f.down) {
+    throw InputError(fmt::format("finger {} is already down", finger), "finger", "a finger that is not down");
+  }
+  const int hit = d.item_index_at(p);
+  TouchOutcome outcome = TouchOutcome::Ignored;
+  Impl::FingerMode mode = Impl::FingerMode::Idle;
+  if (hit >= 0) {
+    outcome = TouchOutcome::GrabbedItem;
+    mode = Impl::FingerMode::Item;
+  } else if (d.drawing) {
+    d.canvas.begin_stroke(finger, d.colour, p);  // the only call that may throw; nothing changed before it
+    outcome = TouchOutcome::StartedStroke;
+    mode = Impl::FingerMode::Stroke;
+  }
+  f.down = true;
+  f.position = p;
+  f.mode = mode;
+  if (mode == Impl::FingerMode::Item) {
+    int max_z = 0;
+    for (const auto& item : d.items) max_z = std::max(max_z, item.z);
+    d.items[static_cast<std::size_t>(hit)].z = max_z + 1;
+    f.item = hit;
+    f.joint = d.attach(hit, p);
+    d.grabbed_event(hit, Holder{Holder::Kind::Finger, finger});
+  } else if (mode == Impl::FingerMode::Stroke) {
+    d.emit("stroke_started", {{"finger", finger}, {"colour", std::string(palette_name(d.colour))}});
+  }
+  return outcome;
+}
+
+void Sandtray::touch_move(int finger, const Vec2& p) {
+  Impl& d = *impl_;
+  d.finger_down(finger);
+  Impl::check_point(p, "touch position");
+  Impl::Finger& f = d.fingers[static_cast<std::size_t>(finger)];
+  if (f.mode == Impl::FingerMode::Stroke) d.canvas.extend_stroke(finger, p);
+  if (f.mode == Impl::FingerMode::Item) f.joint->SetTarget(to_b2(p));
+  f.position = p;
+}
+
+void Sandtray::touch_up(int finger) {
+  Impl& d = *impl_;
+  d.finger_down(finger);
+  d.release_finger(finger, "touch_up");
+  d.fingers[static_cast<std::size_t>(finger)] = Impl::Finger{};
+}
+
+void Sandtray::select_colour(PaletteColour colour) {
+  if (std::find(kPalette.begin(), kPalette.end(), colour) == kPalette.end()) {
+    throw InputError("unknown palette colour", "colour", std::string(palette_names()));
+  }
+  impl_->colour = colour;
+}
+
+void Sandtray::select_colour(std::string_view colour_name) {
+  const auto colour = palette_from_name(colour_name);
+  if (!colour) {
+    throw InputError(fmt::format("unknown palette colour '{}'", colour_name), "colour", std::string(palette_names()));
+  }
+  impl_->colour = *colour;
+}
+
+PaletteColour Sandtray::colour() const { return impl_->colour; }
+
+bool Sandtray::drawing_enabled() const { return impl_->drawing; }
+
+void Sandtray::robot_pose(const Vec2& p) {
+  Impl& d = *impl_;
+  if (!finite(p)) throw InputError("robot pose is not finite", "pose", "finite x, y in metres (sandtray frame)");
+  if (d.state == GameState::Blank) return;  // the sandbox is hidden: the real subscriber ignores poses
+  if (d.robot.last_pose && (*d.robot.last_pose - p).norm() < kRobotPoseEpsilonM) return;
+  d.robot.last_pose = p;
+  d.robot.hand = p;
+  d.robot.deadline = d.now + kRobotReleaseDelayNs;
+  if (d.robot.item < 0) {
+    const int hit = d.item_index_at(p);
+    if (hit >= 0) {
+      d.robot.item = hit;
+      d.robot.joint = d.attach(hit, p);
+      d.grabbed_event(hit, Holder{Holder::Kind::Robot, 0});
+    }
+  } else {
+    d.robot.joint->SetTarget(to_b2(p));
+  }
+}
+
+std::optional<std::string> Sandtray::robot_item() const {
+  if (impl_->robot.item < 0) return std::nullopt;
+  return impl_->items[static_cast<std::size_t>(impl_->robot.item)].spec->name;
+}
+
+std::optional<Vec2> Sandtray::robot_hand() const { return impl_->robot.hand; }
+
+void Sandtray::step(double dt) {
+  if (!std::isfinite(dt) || dt < 0.0 || dt > 3600.0) {
+    throw InputError(fmt::format("time step {} s is not allowed", dt), "dt", "0 <= dt <= 3600 seconds");
+  }
+  impl_->advance(impl_->now + std::llround(dt * 1e9));
+}
+
+double Sandtray::time() const { return impl_->seconds(); }
+
+std::int64_t Sandtray::tick_count() const { return impl_->now / kGameTickNs; }
+
+std::uint64_t Sandtray::physics_steps() const { return impl_->physics_steps; }
+
+bool Sandtray::asleep() const { return impl_->all_asleep(); }
+
+std::vector<ItemState> Sandtray::items() const {
+  std::vector<ItemState> out;
+  out.reserve(impl_->items.size());
+  for (std::size_t i = 0; i < impl_->items.size(); ++i) {
+    const auto& item = impl_->items[i];
+    ItemState s;
+    s.name = item.spec->name;
+    s.pose = impl_->pose_of(item);
+    s.z = item.z;
+    s.visible = item.visible;
+    s.holders = impl_->holders_of(static_cast<int>(i));
+    if (!s.holders.empty()) s.holder = s.holders.front();
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+ItemState Sandtray::item(const std::string& name) const {
+  return items()[impl_->catalogue->index_of(name)];
+}
+
+std::vector<TouchState> Sandtray::touches() const {
+  std::vector<TouchState> out;
+  for (int f = 1; f <= kMaxTouches; ++f) {
+    const auto& finger = impl_->fingers[static_cast<std::size_t>(f)];
+    if (!finger.down) continue;
+    TouchState t;
+    t.finger = f;
+    t.position = finger.position;
+    if (finger.mode == Impl::FingerMode::Item) t.item = impl_->items[static_cast<std::size_t>(finger.item)].spec->name;
+    out.push_back(std::move(t));
+  }
+  return out;
+}
+
+std::optional<std::string> Sandtray::item_at(const Vec2& p) const {
+  if (!finite(p)) throw InputError("point is not finite", "point", "finite x, y in metres");
+  const int hit = impl_->item_index_at(p);
+  if (hit < 0) return std::nullopt;
+  return impl_->items[static_cast<std::size_t>(hit)].spec->name;
+}
+
+Polygon2 Sandtray::footprint(const std::string& name) const {
+  const auto& item = impl_->items[impl_->catalogue->index_of(name)];
+  return transformed(item.spec->polygon, impl_->pose_of(item));
+}
+
+std::vector<std::pair<std::string, Polygon2>> Sandtray::published_footprints() const {
+  std::vector<std::pair<std::string, Polygon2>> out;
+  for (const auto& spec : impl_->catalogue->items()) {
+    const Vec2 mean = vertex_mean(spec.polygon);
+    Polygon2 centred;
+    for (const auto& v : spec.polygon) centred.push_back(v - mean);
+    out.emplace_back(spec.name, std::move(centred));
+  }
+  return out;
+}
+
+FrameTree Sandtray::frames() const {
+  FrameTree tree;
+  const double t = impl_->seconds();
+  tree.set("sandtray", "", Eigen::Isometry3d::Identity(), t);
+  for (const auto& item : impl_->items) tree.set(item.spec->name, "sandtray", impl_->pose_of(item).isometry(), t);
+  for (int f = 1; f <= kMaxTouches; ++f) {
+    const auto& finger = impl_->fingers[static_cast<std::size_t>(f)];
+    if (finger.down && finger.mode != Impl::FingerMode::Idle) {
+      tree.set(touch_frame(f), "sandtray", Pose2{finger.position.x(), finger.position.y(), 0.0}.isometry(), t);
+    }
+  }
+  return tree;
+}
+
+const cv::Mat& Sandtray::background() const { return impl_->published_background; }
+
+std::uint64_t Sandtray::background_version() const { return impl_->background_version; }
+
+const ZoneMap& Sandtray::zones() const { return impl_->zone_map; }
+
+cv::Mat Sandtray::render_screen(int width_px) const {
+  const Impl& d = *impl_;
+  const bool shown = d.state != GameState::Blank;
+  std::vector<ItemView> views;
+  views.reserve(d.items.size());
+  for (const auto& item : d.items) views.push_back(ItemView{item.spec, d.pose_of(item), item.z, shown && item.visible});
+  ScreenOverlay overlay;
+  for (const auto& touch : touches()) overlay.touches.push_back(touch.position);
+  overlay.robot_hand = d.robot.hand;
+  overlay.stash_visible = shown && d.state != GameState::ItemsPlacement;
+  overlay.palette_visible = d.drawing;
+  return d.renderer.render(d.canvas.image(), views, overlay, width_px);
+}
+
+std::vector<Event> Sandtray::drain_events() {
+  std::vector<Event> out;
+  out.swap(impl_->events);
+  return out;
+}
+
+std::uint64_t Sandtray::state_hash() const {
+  Hasher h;
+  impl_->hash_into(h);
+  return h.value();
+}
+
+const ItemCatalogue& Sandtray::catalogue() const { return *impl_->catalogue; }
+
+const SandtrayConfig& Sandtray::config() const { return impl_->config; }
+
+}  // namespace freeplay::sim

@@ -1,0 +1,177 @@
+// Colour zones with the pipeline of the real `zones_from_image` node (core:nodes/zones_from_image, reference §2.9).
+
+#include "freeplay/sim/zones.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include <opencv2/imgproc.hpp>
+
+#include "freeplay/core/error.hpp"
+
+namespace freeplay::sim {
+namespace {
+
+struct ColourRange {
+  std::string_view colour;
+  HsvRange range;
+};
+
+// The real node's ranges (lower → upper, OpenCV HSV units), in kZoneColours order.
+constexpr std::array<ColourRange, 7> kRanges = {{
+    {"green", {{40, 0, 70}, {70, 255, 230}}},
+    {"blue", {{70, 0, 70}, {130, 255, 230}}},
+    {"yellow", {{1, 100, 0}, {40, 255, 255}}},
+    {"white", {{0, 0, 180}, {255, 60, 255}}},
+    {"black", {{0, 0, 0}, {255, 60, 70}}},
+    {"purple", {{120, 0, 70}, {255, 255, 230}}},
+    {"red", {{0, 120, 70}, {10, 255, 255}}},
+}};
+
+std::string colour_list() {
+  std::string out;
+  for (const auto c : kZoneColours) out += (out.empty() ? "" : ", ") + std::string(c);
+  return out;
+}
+
+const ColourRange& range_of(std::string_view colour) {
+  for (const auto& r : kRanges) {
+    if (r.colour == colour) return r;
+  }
+  throw InputError("unknown zone colour '" + std::string(colour) + "'", "colour", colour_list());
+}
+
+/// The real node's per-colour mask → contour steps on the downsampled HSV image.
+std::vector<std::vector<cv::Point>> contours_of(const cv::Mat& small_hsv, const HsvRange& range) {
+  static const cv::Mat kernel = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(3, 3));
+  cv::Mat mask;
+  cv::inRange(small_hsv, cv::Scalar(range.lower[0], range.lower[1], range.lower[2]),
+              cv::Scalar(range.upper[0], range.upper[1], range.upper[2]), mask);
+  cv::morphologyEx(mask, mask, cv::MORPH_OPEN, kernel, cv::Point(-1, -1), 2);
+  if (cv::countNonZero(mask) == 0) return {};  // nothing of this colour: the remaining steps find no contour
+  cv::dilate(mask, mask, kernel);
+  cv::Mat distance;
+  cv::distanceTransform(mask, distance, cv::DIST_L2, cv::DIST_MASK_5);
+  double max_distance = 0.0;
+  cv::minMaxLoc(distance, nullptr, &max_distance);
+  cv::Mat foreground;
+  cv::threshold(distance, foreground, 0.25 * max_distance, 255.0, cv::THRESH_BINARY);
+  foreground.convertTo(foreground, CV_8U);
+  cv::dilate(foreground, foreground, kernel, cv::Point(-1, -1), 2);
+  std::vector<std::vector<cv::Point>> contours;
+  std::vector<cv::Vec4i> hierarchy;
+  cv::findContours(foreground, contours, hierarchy, cv::RETR_TREE, cv::CHAIN_APPROX_TC89_KCOS);
+  return contours;
+}
+
+/// BGR → HSV, then a bilinear resize to `size` (the real node's order). Bilinear interpolation reads only the two
+/// source rows around each destination row, so only those rows (with a one-row margin) are converted; the others
+/// stay zero and are never read. The result is identical to converting the whole image.
+cv::Mat downsampled_hsv(const cv::Mat& bgr, cv::Size size) {
+  std::vector<char> needed(static_cast<std::size_t>(bgr.rows), 0);
+  const double scale_y = static_cast<double>(bgr.rows) / size.height;
+  for (int dy = 0; dy < size.height; ++dy) {
+    // OpenCV computes the source row in single precision; mark the rows of both roundings.
+    const int sy_double = static_cast<int>(std::floor((dy + 0.5) * scale_y - 0.5));
+    const int sy_float = static_cast<int>(std::floor(static_cast<float>((dy + 0.5) * scale_y - 0.5)));
+    for (const int sy : {sy_double, sy_float}) {
+      for (int y = sy; y <= sy + 1; ++y) needed[static_cast<std::size_t>(std::clamp(y, 0, bgr.rows - 1))] = 1;
+    }
+  }
+  cv::Mat hsv = cv::Mat::zeros(bgr.size(), CV_8UC3);
+  for (int y = 0; y < bgr.rows;) {
+    if (!needed[static_cast<std::size_t>(y)]) {
+      ++y;
+      continue;
+    }
+    int end = y;
+    while (end < bgr.rows && needed[static_cast<std::size_t>(end)]) ++end;
+    cv::Mat rows = hsv.rowRange(y, end);
+    cv::cvtColor(bgr.rowRange(y, end), rows, cv::COLOR_BGR2HSV);
+    y = end;
+  }
+  cv::Mat small;
+  cv::resize(hsv, small, size, 0, 0, cv::INTER_LINEAR);
+  return small;
+}
+
+}  // namespace
+
+HsvRange zone_hsv_range(std::string_view colour) { return range_of(colour).range; }
+
+std::array<unsigned char, 3> zone_marker_rgb(std::string_view colour) {
+  const HsvRange range = zone_hsv_range(colour);
+  cv::Mat hsv(1, 1, CV_8UC3);
+  // H is clamped to OpenCV's 0–179 before conversion (the upper bound 255 of several ranges is out of range).
+  auto mid = [&](int i) { return (range.lower[static_cast<std::size_t>(i)] + range.upper[static_cast<std::size_t>(i)]) / 2; };
+  hsv.at<cv::Vec3b>(0, 0) = cv::Vec3b(static_cast<unsigned char>(std::min(mid(0), 179)),
+                                      static_cast<unsigned char>(mid(1)), static_cast<unsigned char>(mid(2)));
+  cv::Mat rgb;
+  cv::cvtColor(hsv, rgb, cv::COLOR_HSV2RGB);
+  const cv::Vec3b p = rgb.at<cv::Vec3b>(0, 0);
+  return {p[0], p[1], p[2]};
+}
+
+ZoneMap ZoneMap::segment(const cv::Mat& bgr, double metres_per_pixel) {
+  if (bgr.empty()) throw InputError("the image is empty", "image", "a BGR CV_8UC3 image");
+  if (bgr.type() != CV_8UC3) {
+    throw InputError("the image has OpenCV type " + std::to_string(bgr.type()), "image", "a BGR CV_8UC3 image");
+  }
+  if (!(metres_per_pixel > 0.0) || !std::isfinite(metres_per_pixel)) {
+    throw InputError("metres per pixel must be positive", "metres_per_pixel", "> 0");
+  }
+  const int small_height =
+      std::max(1, static_cast<int>(std::lround(static_cast<double>(bgr.rows) * kZoneSegmentationWidthPx / bgr.cols)));
+  const cv::Mat small = downsampled_hsv(bgr, cv::Size(kZoneSegmentationWidthPx, small_height));
+  const double scale_x = static_cast<double>(bgr.cols) / kZoneSegmentationWidthPx;
+  const double scale_y = static_cast<double>(bgr.rows) / small_height;
+
+  ZoneMap map;
+  for (const auto& entry : kRanges) {
+    int id = 0;
+    for (const auto& contour : contours_of(small, entry.range)) {
+      Zone zone;
+      zone.colour = std::string(entry.colour);
+      zone.id = id++;
+      zone.polygon.reserve(contour.size());
+      for (const auto& p : contour) {
+        zone.polygon.emplace_back(p.x * scale_x * metres_per_pixel, -p.y * scale_y * metres_per_pixel);
+      }
+      zone.centroid = vertex_mean(zone.polygon);
+      zone.area_m2 = std::abs(signed_area(zone.polygon));
+      map.zones_.push_back(std::move(zone));
+    }
+  }
+  return map;
+}
+
+std::vector<const Zone*> ZoneMap::of_colour(std::string_view colour) const {
+  range_of(colour);
+  std::vector<const Zone*> out;
+  for (const auto& zone : zones_) {
+    if (zone.colour == colour) out.push_back(&zone);
+  }
+  return out;
+}
+
+const Zone* ZoneMap::at(const Vec2& p) const {
+  const Zone* best = nullptr;
+  double best_area = std::numeric_limits<double>::infinity();
+  for (const auto& zone : zones_) {
+    if (zone.polygon.size() >= 3 && zone.area_m2 < best_area && point_in_polygon(zone.polygon, p)) {
+      best = &zone;
+      best_area = zone.area_m2;
+    }
+  }
+  return best;
+}
+
+std::size_t ZoneMap::count(std::string_view colour) const {
+  range_of(colour);
+  return static_cast<std::size_t>(
+      std::count_if(zones_.begin(), zones_.end(), [&](const Zone& z) { return z.colour == colour; }));
+}
+
+}  // namespace freeplay::sim
