@@ -807,6 +807,8 @@ FrameTree Sandtray::frames() const {
 
 const cv::Mat& Sandtray::background() const { return impl_->published_background; }
 
+double Sandtray::drawing_coverage() const { return impl_->canvas.coverage(); }
+
 std::uint64_t Sandtray::background_version() const { return impl_->background_version; }
 
 const ZoneMap& Sandtray::zones() const { return impl_->zone_map; }

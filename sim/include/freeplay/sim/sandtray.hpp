@@ -155,6 +155,8 @@ class Sandtray {
   FrameTree frames() const;
   /// Background (map + strokes, no items), BGR 8-bit at the raster resolution.
   const cv::Mat& background() const;
+  /// Fraction of the screen covered by the children's strokes (0 on a bare background).
+  double drawing_coverage() const;
   /// Increments each time the background is republished (≤ 4 Hz, only when changed).
   std::uint64_t background_version() const;
   /// Colour zones of the last published background.

@@ -1,0 +1,48 @@
+#pragma once
+// One episode: the protocol of the paper (greetings, tutorial, free play until the children stop or the cap,
+// debriefing) on the simulated sandtray, with synthetic children and, in child-robot scenarios, the robot's play
+// policy, planner, move executor and body. Deterministic from one root seed.
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "freeplay/agents/annotations.hpp"
+#include "freeplay/agents/params.hpp"
+#include "freeplay/core/event_log.hpp"
+#include "freeplay/runner/robot_body.hpp"
+#include "freeplay/runner/scenario.hpp"
+#include "freeplay/runner/suite_runner.hpp"
+#include "freeplay/sim/item_catalogue.hpp"
+
+namespace freeplay::runner {
+
+/// Immutable models shared by every episode of a process (loaded once, read-only, safe across threads).
+struct SharedModels {
+  std::shared_ptr<const sim::ItemCatalogue> catalogue;        ///< the game's items
+  std::shared_ptr<const agents::ChildModelParams> child_params;  ///< the calibrated child model
+  RobotBodyFactory robot_body;                               ///< builds the robot's body per episode
+
+  /// The shipped catalogue, child model and the default robot body.
+  static SharedModels load_default();
+};
+
+/// Everything one episode produced.
+struct EpisodeResult {
+  nlohmann::json record;                   ///< its line of episodes.jsonl (without run identity fields)
+  EventLog events;                         ///< the full event log
+  agents::SessionAnnotations annotations;  ///< ground-truth state timelines (PInSoRo format)
+  double simulated_s = 0.0;                ///< whole protocol, simulated seconds
+  double duration_s = 0.0;                 ///< free-play duration
+  bool aborted = false;                    ///< stopped early by the stop flag: discard
+};
+
+/// Runs one episode of `scenario` from root seed `seed`; returns with `aborted` when `stop` becomes true.
+EpisodeResult run_episode(const Scenario& scenario, std::uint64_t seed, const SharedModels& models,
+                          const std::atomic<bool>& stop);
+
+/// The suite runner's episode function: writes `events/<id>.jsonl` and `annotations/<id>.yaml`.
+EpisodeFunction episode_function(const SharedModels& models);
+
+}  // namespace freeplay::runner

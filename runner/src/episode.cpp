@@ -1,0 +1,856 @@
+#include "freeplay/runner/episode.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <map>
+
+#include "freeplay/agents/child_agent.hpp"
+#include "freeplay/agents/labels.hpp"
+#include "freeplay/agents/perception.hpp"
+#include "freeplay/agents/profile.hpp"
+#include "freeplay/core/error.hpp"
+#include "freeplay/planning/move_executor.hpp"
+#include "freeplay/planning/plan.hpp"
+#include "freeplay/policies/play_policy.hpp"
+#include "freeplay/runner/perception_model.hpp"
+#include "freeplay/runner/run_folder.hpp"
+#include "freeplay/runner/versions.hpp"
+#include "freeplay/sim/sandtray.hpp"
+#include "freeplay/sim/zones.hpp"
+
+namespace freeplay::runner {
+
+namespace {
+
+constexpr double kTickS = 0.1;                  // the game's 10 Hz tick
+constexpr double kMinMoveM = 0.02;              // displacement that counts as an item move
+constexpr double kTakenWindowS = 30.0;          // "took an item from" window after the other's last move
+constexpr double kRobotArticulationSyllablesPerS = 3.5;  // NAO text-to-speech at its default speed
+constexpr double kRobotRestAfterS = 30.0;       // nao_behaviours: arm to rest after 30 s without poses
+constexpr const char* kRobotHello = "Hello, I'm Nao. Today I'll be playing with you. Exciting!";
+
+int syllables_of(const std::string& text) {
+  int count = 0;
+  bool in_vowel = false;
+  for (const char ch : text) {
+    const char c = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    const bool vowel = c == 'a' || c == 'e' || c == 'i' || c == 'o' || c == 'u' || c == 'y';
+    if (vowel && !in_vowel) ++count;
+    in_vowel = vowel;
+  }
+  return std::max(1, count);
+}
+
+agents::ChildProfile make_profile(const ChildSpec& spec, const agents::Population& population,
+                                  const agents::ChildModelParams& params, Rng rng) {
+  const auto base = spec.age ? agents::Population::fixed_age(*spec.age) : population;
+  auto profile = base.sample(params.traits, rng);
+  if (spec.age) profile.age_years = *spec.age;
+  if (spec.gender) profile.gender = *spec.gender == "female" ? agents::Gender::Female : agents::Gender::Male;
+  if (spec.sociability) profile.sociability = *spec.sociability;
+  if (spec.assertiveness) profile.assertiveness = *spec.assertiveness;
+  if (spec.attention_span) profile.attention_span = *spec.attention_span;
+  if (spec.tablet_familiarity) profile.tablet = static_cast<agents::TabletFamiliarity>(*spec.tablet_familiarity);
+  profile.validate();
+  return profile;
+}
+
+nlohmann::json profile_json(const agents::ChildProfile& p) {
+  static const char* tablet[] = {"0", "1", "2", "na"};
+  return {{"age", p.age_years},
+          {"gender", std::string(agents::gender_name(p.gender))},
+          {"sociability", p.sociability},
+          {"assertiveness", p.assertiveness},
+          {"attention_span", p.attention_span},
+          {"tablet_familiarity", tablet[static_cast<int>(p.tablet)]}};
+}
+
+std::string_view gaze_name(agents::GazeKind kind) {
+  switch (kind) {
+    case agents::GazeKind::Away: return "away";
+    case agents::GazeKind::PartnerFace: return "partner";
+    case agents::GazeKind::Item: return "item";
+    case agents::GazeKind::Tray: return "tray";
+    case agents::GazeKind::Robot: return "robot";
+    case agents::GazeKind::Experimenter: return "experimenter";
+  }
+  return "?";
+}
+
+std::string_view utterance_name(agents::Utterance kind) {
+  switch (kind) {
+    case agents::Utterance::Comment: return "comment";
+    case agents::Utterance::Proposal: return "proposal";
+    case agents::Utterance::Question: return "question";
+    case agents::Utterance::Protest: return "protest";
+    case agents::Utterance::Request: return "request";
+    case agents::Utterance::AnnounceStop: return "announce_stop";
+  }
+  return "?";
+}
+
+std::string_view addressee_name(agents::Addressee to) {
+  switch (to) {
+    case agents::Addressee::Nobody: return "nobody";
+    case agents::Addressee::Partner: return "partner";
+    case agents::Addressee::Experimenter: return "experimenter";
+  }
+  return "?";
+}
+
+/// One seated child: its agent, finger bookkeeping and per-episode counters.
+struct ChildSlot {
+  std::string seat_name;
+  agents::Seat seat = agents::Seat::Bottom;
+  int finger_offset = 0;  // local fingers 1…3 → touch(offset+1 … offset+3)
+  std::unique_ptr<agents::ChildAgent> agent;
+  agents::ChildActions last;
+  std::array<bool, agents::kFingersPerChild + 1> down{};
+  double speaking_until = -1.0;
+  double last_touch_t = -1e9;
+  bool announced_quit = false;
+  agents::GazeKind last_gaze_kind = agents::GazeKind::Away;
+  int last_gaze_item = -1;
+  int touches = 0;
+  int item_moves = 0;
+
+  bool owns_finger(int finger) const { return finger > finger_offset && finger <= finger_offset + agents::kFingersPerChild; }
+  bool speaking(double t) const { return t < speaking_until; }
+};
+
+/// What the robot is looking at, as the children see it.
+struct RobotGaze {
+  enum class Kind { Tray, Item, Child } kind = Kind::Tray;
+  std::string target;  // item name or seat
+};
+
+/// Last mover and time of each item (for "took an item from" metrics).
+struct ItemHistory {
+  std::string last_mover;  // "purple", "yellow", "robot" or ""
+  double last_move_t = -1e9;
+  Vec2 grabbed_at = Vec2::Zero();
+  std::string zone_at_grab;
+};
+
+class Episode {
+ public:
+  Episode(const Scenario& scenario, std::uint64_t seed, const SharedModels& models)
+      : scenario_(scenario), models_(models), seeds_(seed),
+        tray_(models.catalogue, tray_config(), seeds_.stream("sandtray")),
+        child_robot_(scenario.condition == "child-robot") {
+    const auto& params = *models.child_params;
+    const auto population = population_of(scenario);
+    add_child("purple", agents::Seat::Bottom, 0, make_profile(scenario.purple, population, params,
+                                                              seeds_.stream("profile.purple")));
+    if (!child_robot_) {
+      add_child("yellow", agents::Seat::Top, agents::kFingersPerChild,
+                make_profile(scenario.yellow, population, params, seeds_.stream("profile.yellow")));
+    } else {
+      policy_ = policies::make_policy(scenario.policy, scenario.policy_params);
+      policies::PolicyContext context;
+      for (const auto& item : models.catalogue->items()) context.item_names.push_back(item.name);
+      policy_->reset(context, seeds_.stream("policy"));
+      planning::MoveExecutorConfig config;
+      config.time_budget_s = scenario.planner_budget_s;
+      executor_ = std::make_unique<planning::MoveExecutor>(
+          std::shared_ptr<const planning::MotionPlanner>(planning::make_planner(scenario.planner)), config);
+      planner_rng_ = seeds_.stream("planner");
+      body_ = models.robot_body(scenario.robot_mode, scenario.arm_reach_m);
+      perception_ = std::make_unique<PerceptionModel>(
+          PerceptionSettings{scenario.face_detection_rate, scenario.perception_latency_s, scenario.gaze_noise_deg},
+          seeds_.stream("perception"));
+    }
+  }
+
+  EpisodeResult run(const std::atomic<bool>& stop) {
+    EpisodeResult result;
+    const auto wall_start = std::chrono::steady_clock::now();
+    // Greetings: blank screen; in child-robot sessions the robot stands up and says hello.
+    stage_event("greeting");
+    if (child_robot_) robot_say(kRobotHello, "", 0.0, /*count_as_action=*/false);
+    tray_.step(scenario_.protocol.greeting_s);
+    // Tutorial: tutorial background, only the boy and the girl.
+    tray_.signal(sim::Signal::StartTutorial);
+    stage_event("tutorial");
+    tray_.step(scenario_.protocol.tutorial_s);
+    // Free play.
+    tray_.signal(sim::Signal::StartFreeplay);
+    freeplay_start_ = tray_.time();
+    stage_event("freeplay");
+    drain_tray_events();
+    const double cap = scenario_.protocol.freeplay_cap_s;
+    std::string ended_by = "cap";
+    double t = 0.0;
+    for (long tick = 0;; ++tick) {
+      t = static_cast<double>(tick) * kTickS;
+      if (t >= cap) break;
+      if ((tick & 63) == 0 && stop.load(std::memory_order_relaxed)) {
+        result.aborted = true;
+        return result;
+      }
+      step_children(t);
+      if (child_robot_) step_robot(t);
+      tray_.step(kTickS);
+      drain_tray_events();
+      update_gaze_metrics(t);
+      if (ended()) {
+        t += kTickS;
+        ended_by = "quit";
+        break;
+      }
+    }
+    const double duration = std::min(t, cap);
+    log_.emit({freeplay_start_ + duration, "protocol", "freeplay_ended", {{"ended_by", ended_by}, {"duration_s", duration}}});
+    for (auto& c : children_) c.agent->finish(duration);
+    // Debriefing.
+    tray_.signal(sim::Signal::BlankInterface);
+    stage_event("debriefing");
+    tray_.step(scenario_.protocol.debriefing_s);
+    drain_tray_events();
+
+    result.duration_s = duration;
+    result.simulated_s = tray_.time();
+    result.annotations.purple = children_[0].agent->timeline();
+    if (!child_robot_) result.annotations.yellow = children_[1].agent->timeline();
+    result.record = record(duration, ended_by, result.annotations);
+    result.record["simulated_s"] = result.simulated_s;
+    result.record["wall_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    result.events = std::move(log_);
+    return result;
+  }
+
+ private:
+  static agents::Population population_of(const Scenario& s) {
+    if (s.population == "pinsoro-cc") return agents::Population::pinsoro_child_child();
+    if (s.population == "pinsoro-cr") return agents::Population::pinsoro_child_robot();
+    return s.condition == "child-robot" ? agents::Population::pinsoro_child_robot()
+                                        : agents::Population::pinsoro_child_child();
+  }
+
+  static sim::SandtrayConfig tray_config() {
+    sim::SandtrayConfig config;
+    config.raster_width_px = 960;  // zones are segmented at 200 px anyway; half the raster cost
+    return config;
+  }
+
+  void add_child(const std::string& seat_name, agents::Seat seat, int finger_offset, agents::ChildProfile profile) {
+    ChildSlot c;
+    c.seat_name = seat_name;
+    c.seat = seat;
+    c.finger_offset = finger_offset;
+    c.agent = std::make_unique<agents::ChildAgent>(*models_.child_params, profile, seat,
+                                                   seeds_.stream("child." + seat_name));
+    children_.push_back(std::move(c));
+  }
+
+  void stage_event(const std::string& name) { log_.emit({tray_.time(), "protocol", "stage", {{"stage", name}}}); }
+
+  double now() const { return tray_.time(); }
+
+  bool ended() const {
+    if (child_robot_) return children_[0].agent->wants_to_stop();
+    return children_[0].agent->wants_to_stop() && children_[1].agent->wants_to_stop();
+  }
+
+  // ---- children --------------------------------------------------------------------------------------------
+
+  void refresh_seen_zones() {
+    if (seen_zones_version_ == tray_.background_version()) return;
+    seen_zones_version_ = tray_.background_version();
+    std::vector<const sim::Zone*> zones;
+    for (const auto& z : tray_.zones().zones()) zones.push_back(&z);
+    std::stable_sort(zones.begin(), zones.end(), [](const auto* a, const auto* b) { return a->area_m2 > b->area_m2; });
+    seen_zone_count_ = 0;
+    for (const auto* z : zones) {
+      if (seen_zone_count_ >= static_cast<int>(agents::kMaxSeenZones)) break;
+      const auto colour = sim::palette_from_name(z->colour);
+      if (!colour) continue;
+      auto& seen = seen_zones_[static_cast<std::size_t>(seen_zone_count_++)];
+      seen.colour = *colour;
+      seen.centroid = z->centroid;
+      seen.radius_m = std::sqrt(std::max(z->area_m2, 1e-6) / 3.141592653589793);
+    }
+    observation_zones_.clear();
+    for (const auto& z : tray_.zones().zones()) observation_zones_.push_back({z.colour, z.polygon, z.centroid});
+  }
+
+  void perceive(const ChildSlot& me, const std::vector<sim::ItemState>& items, double t,
+                agents::ChildPerception& seen) const {
+    seen.item_count = 0;
+    for (const auto& item : items) {
+      if (!item.visible || seen.item_count >= static_cast<int>(agents::kMaxSeenItems)) continue;
+      const int index = agents::item_index(item.name);
+      if (index < 0) continue;
+      auto& s = seen.items[static_cast<std::size_t>(seen.item_count++)];
+      s.item = index;
+      s.position = item.pose.position();
+      s.in_stash = sim::in_stash(s.position);
+      s.holder = agents::HolderView::Nobody;
+      for (const auto& h : item.holders) {
+        if (h.kind == sim::Holder::Kind::Robot) {
+          if (s.holder == agents::HolderView::Nobody) s.holder = agents::HolderView::Robot;
+        } else if (me.owns_finger(h.finger)) {
+          s.holder = agents::HolderView::Me;
+        } else if (s.holder != agents::HolderView::Me) {
+          s.holder = agents::HolderView::Partner;
+        }
+      }
+    }
+    seen.zone_count = seen_zone_count_;
+    std::copy_n(seen_zones_.begin(), seen_zone_count_, seen.zones.begin());
+    seen.experimenter_present = true;
+    auto& view = seen.partner;
+    view = agents::PartnerView{};
+    view.present = true;
+    if (!child_robot_) {
+      const ChildSlot& other = children_[&me == &children_[0] ? 1 : 0];
+      for (const auto& touch : tray_.touches()) {
+        if (!other.owns_finger(touch.finger) || view.touch_count >= 6) continue;
+        view.touches[static_cast<std::size_t>(view.touch_count++)] = {touch.position, agents::item_index(touch.item)};
+      }
+      view.gaze = other.last.gaze;
+      view.speech = other.last.speech;
+      view.speaking = other.speaking(t);
+      view.wants_to_stop = other.agent->wants_to_stop();
+      return;
+    }
+    view.is_robot = true;
+    if (const auto hand = tray_.robot_hand()) {
+      const auto item = tray_.robot_item();
+      view.touches[0] = {*hand, item ? agents::item_index(*item) : -1};
+      view.touch_count = 1;
+    }
+    switch (robot_gaze_.kind) {
+      case RobotGaze::Kind::Child:
+        view.gaze.kind = robot_gaze_.target == me.seat_name ? agents::GazeKind::PartnerFace : agents::GazeKind::Away;
+        break;
+      case RobotGaze::Kind::Item:
+        view.gaze.kind = agents::GazeKind::Item;
+        view.gaze.item = agents::item_index(robot_gaze_.target);
+        break;
+      case RobotGaze::Kind::Tray: view.gaze.kind = agents::GazeKind::Tray; break;
+    }
+    if (robot_speech_started_ >= 0 && std::abs(robot_speech_started_ - t) < 1e-9) {
+      agents::SpeechEvent speech;
+      speech.kind = agents::Utterance::Comment;
+      speech.to = agents::Addressee::Partner;
+      speech.duration_s = robot_speaking_until_ - t;
+      speech.syllables = static_cast<int>(speech.duration_s * kRobotArticulationSyllablesPerS);
+      view.speech = speech;
+    }
+    view.speaking = t < robot_speaking_until_;
+  }
+
+  void step_children(double t) {
+    refresh_seen_zones();
+    const auto items = tray_.items();
+    for (std::size_t i = 0; i < children_.size(); ++i) perceive(children_[i], items, t, perceptions_[i]);
+    for (std::size_t i = 0; i < children_.size(); ++i) {
+      children_[i].last = children_[i].agent->step(t, kTickS, perceptions_[i]);
+    }
+    for (auto& c : children_) apply(c, t);
+  }
+
+  void apply(ChildSlot& c, double t) {
+    const auto& a = c.last;
+    const double at = now();
+    if (a.select_colour) {
+      tray_.select_colour(*a.select_colour);
+      log_.emit({at, "child." + c.seat_name, "palette", {{"colour", std::string(sim::palette_name(*a.select_colour))}}});
+    }
+    for (int i = 0; i < a.touch_count; ++i) {
+      const auto& cmd = a.touches[static_cast<std::size_t>(i)];
+      if (cmd.finger < 1 || cmd.finger > agents::kFingersPerChild) continue;
+      const int finger = c.finger_offset + cmd.finger;
+      auto& down = c.down[static_cast<std::size_t>(cmd.finger)];
+      switch (cmd.phase) {
+        case agents::TouchPhase::Down: {
+          if (down) tray_.touch_up(finger);
+          down = false;
+          if (!sim::on_screen(cmd.point)) {
+            log_.emit({at, "child." + c.seat_name, "touch_missed", {{"x", cmd.point.x()}, {"y", cmd.point.y()}}});
+            break;
+          }
+          const auto outcome = tray_.touch_down(finger, cmd.point);
+          down = true;
+          ++c.touches;
+          c.last_touch_t = t;
+          log_.emit({at, "child." + c.seat_name, "touch_down",
+                     {{"finger", finger},
+                      {"x", cmd.point.x()},
+                      {"y", cmd.point.y()},
+                      {"outcome", outcome == sim::TouchOutcome::GrabbedItem    ? "item"
+                                  : outcome == sim::TouchOutcome::StartedStroke ? "stroke"
+                                                                                : "ignored"}}});
+          break;
+        }
+        case agents::TouchPhase::Move: {
+          if (!down) break;
+          const Vec2 p(std::clamp(cmd.point.x(), 0.0, sim::kScreenWidthM),
+                       std::clamp(cmd.point.y(), -sim::kScreenHeightM, 0.0));
+          tray_.touch_move(finger, p);
+          break;
+        }
+        case agents::TouchPhase::Up:
+          if (!down) break;
+          tray_.touch_up(finger);
+          down = false;
+          log_.emit({at, "child." + c.seat_name, "touch_up", {{"finger", finger}}});
+          break;
+      }
+    }
+    if (a.speech) {
+      c.speaking_until = t + a.speech->duration_s;
+      log_.emit({at, "child." + c.seat_name, "speech",
+                 {{"kind", std::string(utterance_name(a.speech->kind))},
+                  {"to", std::string(addressee_name(a.speech->to))},
+                  {"duration_s", a.speech->duration_s},
+                  {"syllables", a.speech->syllables}}});
+    }
+    if (a.gaze.kind != c.last_gaze_kind || a.gaze.item != c.last_gaze_item) {
+      c.last_gaze_kind = a.gaze.kind;
+      c.last_gaze_item = a.gaze.item;
+      nlohmann::json data{{"target", std::string(gaze_name(a.gaze.kind))}};
+      if (a.gaze.kind == agents::GazeKind::Item && a.gaze.item >= 0) {
+        data["item"] = std::string(agents::kItemNames[static_cast<std::size_t>(a.gaze.item)]);
+      }
+      log_.emit({at, "child." + c.seat_name, "gaze", std::move(data)});
+    }
+    if (a.quit && !c.announced_quit) {
+      c.announced_quit = true;
+      log_.emit({at, "child." + c.seat_name, "wants_to_stop", nullptr});
+    }
+  }
+
+  // ---- robot -----------------------------------------------------------------------------------------------
+
+  policies::Observation observe(double t) {
+    policies::Observation o;
+    o.t = t;
+    for (const auto& item : tray_.items()) {
+      policies::ItemObservation obs;
+      obs.name = item.name;
+      obs.pose = item.pose;
+      obs.visible = item.visible;
+      for (const auto& h : item.holders) {
+        if (h.kind == sim::Holder::Kind::Robot) obs.held_by_robot = true;
+        if (h.kind == sim::Holder::Kind::Finger) obs.touched_by_child = true;
+      }
+      o.items.push_back(std::move(obs));
+    }
+    o.zones = observation_zones_;
+    for (const auto& touch : tray_.touches()) o.touches.push_back({touch.finger, touch.position});
+    o.interaction_events = std::move(pending_interaction_events_);
+    pending_interaction_events_.clear();
+    if (policy_->perceives_children()) {
+      const auto& c = children_[0];
+      ChildTruth truth;
+      truth.seat = c.seat_name;
+      truth.gaze = c.last.gaze.kind;
+      truth.gaze_point = c.last.gaze.point;
+      truth.speaking = c.speaking(t);
+      truth.speech_to_partner = c.last.speech && c.last.speech->to == agents::Addressee::Partner;
+      truth.seconds_since_touch = t - c.last_touch_t;
+      for (const auto& touch : tray_.touches()) {
+        if (c.owns_finger(touch.finger) && !touch.item.empty()) truth.moving_item = touch.item;
+      }
+      o.children.push_back(perception_->perceive(truth, t));
+    }
+    const auto reach = body_->reach();
+    o.self.arm_reach_known = true;
+    o.self.arm_reach_centre = reach.centre;
+    o.self.arm_reach_radius = reach.radius;
+    o.self.moving_item = executor_->status() == planning::MoveStatus::Running;
+    o.self.current_item = current_move_item_;
+    o.self.speaking = t < robot_speaking_until_;
+    return o;
+  }
+
+  void robot_say(const std::string& text, const std::string& to, double t, bool count_as_action) {
+    const double duration = syllables_of(text) / kRobotArticulationSyllablesPerS;
+    robot_speech_started_ = t;
+    robot_speaking_until_ = t + duration;
+    speech_pending_result_ = count_as_action;
+    log_.emit({now(), "robot", "say", {{"text", text}, {"to", to}, {"duration_s", duration}}});
+    if (count_as_action) count_action("say", t);
+  }
+
+  void count_action(const std::string& type, double t) {
+    ++robot_actions_[type];
+    if (awaiting_response_since_ >= 0) {
+      response_latencies_.push_back(t - awaiting_response_since_);
+      awaiting_response_since_ = -1.0;
+    }
+  }
+
+  void start_move(const policies::MoveItem& move, double t) {
+    if (!std::isfinite(move.target.x()) || !std::isfinite(move.target.y()) ||
+        models_.catalogue->find(move.item) == nullptr) {
+      throw InputError(fmt::format("policy '{}' at free-play t = {:.1f} s asked to move '{}' to ({}, {})",
+                                   policy_->name(), t, move.item, move.target.x(), move.target.y()),
+                       "MoveItem", fmt::format("an item of {} and a finite target", models_.catalogue->names()));
+    }
+    planning::MoveWorld world;
+    world.item_centre = [this](const std::string& name) -> std::optional<Vec2> {
+      if (models_.catalogue->find(name) == nullptr) return std::nullopt;
+      return tray_.item(name).pose.position();
+    };
+    world.footprints = [this] {
+      std::vector<planning::Obstacle> obstacles;
+      for (const auto& item : tray_.items()) {
+        if (item.visible && !sim::in_stash(item.pose.position())) {
+          obstacles.push_back({item.name, tray_.footprint(item.name)});
+        }
+      }
+      return obstacles;
+    };
+    executor_->start({move.item, move.target}, world, planner_rng_);
+    current_move_item_ = move.item;
+    move_target_ = move.target;
+    count_action("move", t);
+    ++moves_started_;
+    log_.emit({now(), "robot", "move_goal", {{"item", move.item}, {"x", move.target.x()}, {"y", move.target.y()}}});
+    robot_gaze_ = {RobotGaze::Kind::Item, move.item};
+  }
+
+  void handle(const policies::Action& action, double t) {
+    if (const auto* move = std::get_if<policies::MoveItem>(&action)) {
+      start_move(*move, t);
+    } else if (const auto* look = std::get_if<policies::LookAt>(&action)) {
+      count_action("look", t);
+      if (look->child) {
+        robot_gaze_ = {RobotGaze::Kind::Child, *look->child};
+        body_->look_at(body_->child_face(*look->child));
+        log_.emit({now(), "robot", "look_at", {{"child", *look->child}}});
+      } else if (look->point) {
+        robot_gaze_ = {RobotGaze::Kind::Tray, ""};
+        for (const auto& item : tray_.items()) {
+          if ((item.pose.position() - look->point->head<2>()).norm() < 0.03) robot_gaze_ = {RobotGaze::Kind::Item, item.name};
+        }
+        body_->look_at(*look->point);
+        log_.emit({now(), "robot", "look_at", {{"x", look->point->x()}, {"y", look->point->y()}, {"z", look->point->z()}}});
+      }
+    } else if (const auto* point = std::get_if<policies::PointAt>(&action)) {
+      count_action("point", t);
+      body_->point_at(point->point);
+      last_pose_t_ = t;
+      log_.emit({now(), "robot", "point_at", {{"x", point->point.x()}, {"y", point->point.y()}}});
+    } else if (const auto* say = std::get_if<policies::Say>(&action)) {
+      robot_say(say->text, say->addressee, t, true);
+    } else if (std::holds_alternative<policies::CancelMove>(action)) {
+      count_action("cancel", t);
+      executor_->cancel();
+      log_.emit({now(), "robot", "cancel", nullptr});
+    }
+  }
+
+  void step_robot(double t) {
+    for (const auto& action : policy_->decide(observe(t))) handle(action, t);
+    const auto before = executor_->status();
+    executor_->step(
+        kTickS,
+        [&](const planning::TimedPose& pose) {
+          tray_.robot_pose(pose.position);
+          const Vec2 tip = body_->follow_finger(pose.position);
+          sync_errors_mm_.push_back((tip - pose.position).norm() * 1000.0);
+          last_pose_t_ = t;
+        },
+        [](int /*percentage*/) {});
+    const auto after = executor_->status();
+    if (before == planning::MoveStatus::Running && after != planning::MoveStatus::Running) finish_move(after, t);
+    if (after == planning::MoveStatus::Aborted && before != planning::MoveStatus::Aborted) finish_move(after, t);
+    if (speech_pending_result_ && t >= robot_speaking_until_) {
+      speech_pending_result_ = false;
+      policy_->on_result({policies::ActionResult::Kind::SpeechFinished, "", ""});
+    }
+    if (last_pose_t_ > -1e8 && t - last_pose_t_ > kRobotRestAfterS) {
+      body_->rest();
+      last_pose_t_ = -1e9;
+    }
+  }
+
+  void finish_move(planning::MoveStatus status, double t) {
+    const auto outcome = executor_->outcome();
+    policies::ActionResult result;
+    result.item = current_move_item_;
+    nlohmann::json data{{"item", current_move_item_}};
+    if (outcome) {
+      planning_times_s_.push_back(outcome->plan.metrics.planning_time_s);
+      if (outcome->plan.ok) {
+        path_lengths_m_.push_back(outcome->plan.metrics.path_length_m);
+        move_durations_s_.push_back(static_cast<double>(outcome->poses_sent) * kTickS);
+      }
+      data["target_in_reach"] = outcome->target_in_reach;
+      data["poses"] = outcome->poses_sent;
+    }
+    switch (status) {
+      case planning::MoveStatus::Succeeded:
+        result.kind = policies::ActionResult::Kind::MoveSucceeded;
+        ++moves_succeeded_;
+        pending_placement_[current_move_item_] = move_target_;
+        data["status"] = "succeeded";
+        break;
+      case planning::MoveStatus::Preempted:
+        result.kind = policies::ActionResult::Kind::MoveCancelled;
+        ++moves_cancelled_;
+        data["status"] = "cancelled";
+        break;
+      default:
+        result.kind = policies::ActionResult::Kind::MoveFailed;
+        result.reason = outcome ? outcome->plan.message : "";
+        ++moves_failed_;
+        data["status"] = "failed";
+        data["reason"] = result.reason;
+        break;
+    }
+    log_.emit({now(), "robot", "move_result", std::move(data)});
+    robot_gaze_ = {RobotGaze::Kind::Tray, ""};
+    policy_->on_result(result);
+    (void)t;
+  }
+
+  // ---- events and metrics ----------------------------------------------------------------------------------
+
+  std::string mover_of(const nlohmann::json& data) const {
+    if (data.value("holder", "") == "robot") return "robot";
+    const int finger = data.value("finger", 0);
+    for (const auto& c : children_) {
+      if (c.owns_finger(finger)) return c.seat_name;
+    }
+    return "";
+  }
+
+  std::string zone_colour_at(const Vec2& p) const {
+    const auto* zone = tray_.zones().at(p);
+    return zone != nullptr ? zone->colour : "";
+  }
+
+  void drain_tray_events() {
+    const double t = tray_.time() - freeplay_start_;
+    for (auto& e : tray_.drain_events()) {
+      if (e.type == "interaction_event") pending_interaction_events_.push_back(e.data.value("message", ""));
+      if (e.type == "item_grabbed") on_grab(e.data, t);
+      if (e.type == "item_released") on_release(e.data, t);
+      log_.emit(std::move(e));
+    }
+  }
+
+  void on_grab(const nlohmann::json& data, double t) {
+    const auto item = data.value("item", "");
+    const auto mover = mover_of(data);
+    auto& h = history_[item];
+    h.grabbed_at = tray_.item(item).pose.position();
+    h.zone_at_grab = zone_colour_at(h.grabbed_at);
+    const bool recently_other = !h.last_mover.empty() && h.last_mover != mover && t - h.last_move_t < kTakenWindowS;
+    bool shared_with_robot = false;
+    bool shared_with_child = false;
+    for (const auto& other : data.value("shared_with", nlohmann::json::array())) {
+      if (other == "robot") shared_with_robot = true; else shared_with_child = true;
+    }
+    if (mover == "robot" && (shared_with_child || (recently_other && h.last_mover != "robot"))) ++taken_by_robot_;
+    if (mover != "robot" && (shared_with_robot || (recently_other && h.last_mover == "robot"))) ++taken_by_child_;
+  }
+
+  void on_release(const nlohmann::json& data, double t) {
+    const auto item = data.value("item", "");
+    const auto mover = mover_of(data);
+    auto& h = history_[item];
+    const Vec2 at = tray_.item(item).pose.position();
+    if ((at - h.grabbed_at).norm() < kMinMoveM) return;
+    h.last_mover = mover;
+    h.last_move_t = t;
+    if (zone_colour_at(at) != h.zone_at_grab) ++zone_transitions_;
+    if (mover == "robot") {
+      ++robot_item_moves_;
+      if (const auto it = pending_placement_.find(item); it != pending_placement_.end()) {
+        placement_errors_mm_.push_back((at - it->second).norm() * 1000.0);
+        pending_placement_.erase(it);
+      }
+    } else {
+      for (auto& c : children_) {
+        if (c.seat_name == mover) ++c.item_moves;
+      }
+      awaiting_response_since_ = t;
+    }
+  }
+
+  void update_gaze_metrics(double t) {
+    (void)t;
+    if (child_robot_) {
+      const auto& c = children_[0];
+      const bool child_looks = c.last.gaze.kind == agents::GazeKind::Robot || c.last.gaze.kind == agents::GazeKind::PartnerFace;
+      const bool robot_looks = robot_gaze_.kind == RobotGaze::Kind::Child && robot_gaze_.target == c.seat_name;
+      if (child_looks && robot_looks) mutual_gaze_s_ += kTickS;
+      const bool joint = c.last.gaze.kind == agents::GazeKind::Item && c.last.gaze.item >= 0 &&
+                         robot_gaze_.kind == RobotGaze::Kind::Item &&
+                         agents::item_index(robot_gaze_.target) == c.last.gaze.item;
+      if (joint && !joint_attention_) ++joint_attention_episodes_;
+      joint_attention_ = joint;
+      return;
+    }
+    const auto& a = children_[0].last.gaze;
+    const auto& b = children_[1].last.gaze;
+    if (a.kind == agents::GazeKind::PartnerFace && b.kind == agents::GazeKind::PartnerFace) mutual_gaze_s_ += kTickS;
+    const bool joint = a.kind == agents::GazeKind::Item && b.kind == agents::GazeKind::Item && a.item >= 0 && a.item == b.item;
+    if (joint && !joint_attention_) ++joint_attention_episodes_;
+    joint_attention_ = joint;
+  }
+
+  static double mean_or_nan(const std::vector<double>& v) {
+    if (v.empty()) return std::nan("");
+    double s = 0.0;
+    for (const double x : v) s += x;
+    return s / static_cast<double>(v.size());
+  }
+
+  nlohmann::json record(double duration, const std::string& ended_by, const agents::SessionAnnotations& annotations) {
+    const double minutes = std::max(duration / 60.0, 1e-9);
+    nlohmann::json metrics;
+    auto shares = [&](const std::string& seat, const agents::ChildTimeline& timeline) {
+      for (const auto axis : agents::kAxes) {
+        const auto s = agents::label_shares(timeline, axis);
+        for (std::size_t i = 0; i < agents::label_count(axis); ++i) {
+          metrics["label_share"][seat][std::string(agents::label_name(axis, i))] = s[i];
+        }
+      }
+    };
+    shares("purple", *annotations.purple);
+    if (annotations.yellow) shares("yellow", *annotations.yellow);
+    int child_touches = 0;
+    int child_moves = 0;
+    for (const auto& c : children_) {
+      child_touches += c.touches;
+      child_moves += c.item_moves;
+      metrics["child"][c.seat_name]["touches_per_min"] = c.touches / minutes;
+      metrics["child"][c.seat_name]["item_moves_per_min"] = c.item_moves / minutes;
+    }
+    metrics["child_touches_per_min"] = child_touches / minutes;
+    metrics["child_item_moves_per_min"] = child_moves / minutes;
+    metrics["zone_transitions"] = zone_transitions_;
+    metrics["drawing_coverage"] = tray_.drawing_coverage();
+    metrics["mutual_gaze_s"] = mutual_gaze_s_;
+    metrics["joint_attention_episodes"] = joint_attention_episodes_;
+    if (child_robot_) {
+      int actions = 0;
+      for (const char* type : {"move", "look", "point", "say", "cancel"}) {
+        const int n = robot_actions_.count(type) != 0 ? robot_actions_.at(type) : 0;
+        metrics["robot_actions"][type] = n;
+        actions += n;
+      }
+      metrics["robot_actions_per_min"] = actions / minutes;
+      metrics["robot_item_moves_per_min"] = robot_item_moves_ / minutes;
+      metrics["items_taken_by_robot_from_child"] = taken_by_robot_;
+      metrics["items_taken_by_child_from_robot"] = taken_by_child_;
+      metrics["robot_response_latency_s"] = mean_or_nan(response_latencies_);
+      metrics["planner"]["moves_started"] = moves_started_;
+      metrics["planner"]["success_rate"] = moves_started_ > 0 ? static_cast<double>(moves_succeeded_) / moves_started_ : std::nan("");
+      metrics["planner"]["moves_failed"] = moves_failed_;
+      metrics["planner"]["moves_cancelled"] = moves_cancelled_;
+      metrics["planner"]["path_length_m"] = mean_or_nan(path_lengths_m_);
+      metrics["executor"]["move_duration_s"] = mean_or_nan(move_durations_s_);
+      metrics["executor"]["placement_error_mm"] = mean_or_nan(placement_errors_mm_);
+      metrics["executor"]["sync_error_mm_mean"] = mean_or_nan(sync_errors_mm_);
+      metrics["executor"]["sync_error_mm_max"] =
+          sync_errors_mm_.empty() ? std::nan("") : *std::max_element(sync_errors_mm_.begin(), sync_errors_mm_.end());
+    }
+    nlohmann::json children = nlohmann::json::object();
+    for (const auto& c : children_) {
+      children[c.seat_name] = profile_json(c.agent->profile());
+      children[c.seat_name]["quit_time_s"] = c.agent->quit_time();
+    }
+    nlohmann::json timing{{"planning_time_s_mean", mean_or_nan(planning_times_s_)}};
+    return {{"duration_s", duration},
+            {"ended_by", ended_by},
+            {"children", children},
+            {"robot_mode", child_robot_ ? scenario_.robot_mode : ""},
+            {"planner", child_robot_ ? scenario_.planner : ""},
+            {"events", log_.size()},
+            {"event_log_hash", fmt::format("{:016x}", log_.hash())},
+            {"gl_renderer", nullptr},
+            {"libraries", library_versions()},
+            {"timing", timing},
+            {"metrics", metrics}};
+  }
+
+  const Scenario& scenario_;
+  const SharedModels& models_;
+  SeedSequence seeds_;
+  sim::Sandtray tray_;
+  bool child_robot_;
+  EventLog log_;
+  double freeplay_start_ = 0.0;
+  std::vector<ChildSlot> children_;
+  std::array<agents::ChildPerception, 2> perceptions_{};
+  std::array<agents::SeenZone, agents::kMaxSeenZones> seen_zones_{};
+  int seen_zone_count_ = 0;
+  std::uint64_t seen_zones_version_ = ~std::uint64_t{0};
+  std::vector<policies::ZoneObservation> observation_zones_;
+  // Robot.
+  std::unique_ptr<policies::PlayPolicy> policy_;
+  std::unique_ptr<planning::MoveExecutor> executor_;
+  Rng planner_rng_{0};
+  std::unique_ptr<RobotBody> body_;
+  std::unique_ptr<PerceptionModel> perception_;
+  RobotGaze robot_gaze_;
+  std::string current_move_item_;
+  Vec2 move_target_ = Vec2::Zero();
+  double robot_speech_started_ = -1.0;
+  double robot_speaking_until_ = -1.0;
+  bool speech_pending_result_ = false;
+  double last_pose_t_ = -1e9;
+  std::vector<std::string> pending_interaction_events_;
+  std::map<std::string, Vec2> pending_placement_;
+  // Metrics.
+  std::map<std::string, ItemHistory> history_;
+  std::map<std::string, int> robot_actions_;
+  int robot_item_moves_ = 0;
+  int taken_by_robot_ = 0;
+  int taken_by_child_ = 0;
+  int zone_transitions_ = 0;
+  double mutual_gaze_s_ = 0.0;
+  int joint_attention_episodes_ = 0;
+  bool joint_attention_ = false;
+  double awaiting_response_since_ = -1.0;
+  std::vector<double> response_latencies_;
+  int moves_started_ = 0;
+  int moves_succeeded_ = 0;
+  int moves_failed_ = 0;
+  int moves_cancelled_ = 0;
+  std::vector<double> planning_times_s_;
+  std::vector<double> path_lengths_m_;
+  std::vector<double> move_durations_s_;
+  std::vector<double> placement_errors_mm_;
+  std::vector<double> sync_errors_mm_;
+};
+
+}  // namespace
+
+EpisodeResult run_episode(const Scenario& scenario, std::uint64_t seed, const SharedModels& models,
+                          const std::atomic<bool>& stop) {
+  Episode episode(scenario, seed, models);
+  return episode.run(stop);
+}
+
+EpisodeFunction episode_function(const SharedModels& models) {
+  return [&models](const EpisodeTask& task, const std::atomic<bool>& stop) {
+    auto result = run_episode(task.variant->scenario, task.seed, models, stop);
+    EpisodeOutput out;
+    if (result.aborted) return out;
+    const auto id = RunFolder::episode_file_id(task.variant->id, task.index);
+    out.record = std::move(result.record);
+    out.simulated_s = result.simulated_s;
+    out.files["events/" + id + ".jsonl"] = result.events.to_jsonl();
+    out.files["annotations/" + id + ".yaml"] = agents::to_pinsoro_yaml(
+        result.annotations, 0.0,
+        fmt::format("Synthetic ground truth by freeplay-sim: {} episode {} seed {} (times: s since free play started)",
+                    task.variant->id, task.index, task.seed));
+    return out;
+  };
+}
+
+}  // namespace freeplay::runner
