@@ -99,7 +99,11 @@ void NaoController::place_base(const NaoJointVector& posture) {
   const RowMatrix3d sole_r = Eigen::Map<const RowMatrix3d>(scratch_->site_xmat + 9 * nao_.l_sole_site);
   const Eigen::Matrix3d torso_r =
       Eigen::AngleAxisd(nao_.facing_yaw, Vector3d::UnitZ()).toRotationMatrix() * sole_r.transpose();
-  const Vector3d torso_p = nao_.sole_anchor - torso_r * (0.5 * (l_sole + r_sole));
+  // Soles' midpoint over the anchor; the lower sole on the floor (both are flat and level in every posture).
+  const Vector3d l_world = torso_r * l_sole;
+  const Vector3d r_world = torso_r * r_sole;
+  Vector3d torso_p = nao_.sole_anchor - 0.5 * (l_world + r_world);
+  torso_p.z() = nao_.sole_anchor.z() - std::min(l_world.z(), r_world.z());
   const Eigen::Quaterniond q(torso_r);
   mjData* d = stage_.data();
   for (int k = 0; k < 3; ++k) d->mocap_pos[3 * mocap + k] = torso_p[k];
@@ -110,17 +114,17 @@ void NaoController::place_base(const NaoJointVector& posture) {
 }
 
 void NaoController::go_to_posture(NaoPosture posture) {
-  const NaoJointVector& angles = posture_angles(posture);
-  place_base(angles);
+  set_joint_targets(posture_angles(posture));  // clamps the table's 4-decimal values into the joint ranges
+  place_base(targets_);
   if (stage_.mode() == StageMode::dynamic) {
     // The posture change itself is not simulated: the robot starts there at rest.
     mjData* d = stage_.data();
     for (int i = 0; i < kNaoJointCount; ++i) {
-      d->qpos[nao_.qpos[static_cast<size_t>(i)]] = angles[static_cast<size_t>(i)];
+      d->qpos[nao_.qpos[static_cast<size_t>(i)]] = targets_[static_cast<size_t>(i)];
       d->qvel[nao_.dof[static_cast<size_t>(i)]] = 0.0;
     }
+    apply();
   }
-  set_joint_targets(angles);
 }
 
 GazeResult NaoController::look_at(const Eigen::Vector3d& point) {

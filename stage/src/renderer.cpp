@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <stdexcept>
@@ -252,6 +253,13 @@ FramePack Renderer::render(const Stage& stage, std::string_view camera, const Re
   frame.camera = spec.name;
   frame.K = request.width > 0 ? spec.color.scaled_to(request.width, request.height) : spec.color;
   frame.K_depth = request.width > 0 && spec.depth.width == spec.color.width ? frame.K : spec.depth;
+  if (request.intrinsics) {
+    const CameraIntrinsics& k = *request.intrinsics;
+    if (k.width < 1 || k.height < 1 || !(k.fx > 0) || !(k.fy > 0) || std::abs(k.fx - k.fy) > 1e-9 * k.fx) {
+      throw InputError("custom intrinsics need a positive size and fx = fy > 0 (square pixels)", "intrinsics");
+    }
+    frame.K = frame.K_depth = k;
+  }
   for (const CameraIntrinsics* k : {&frame.K, &frame.K_depth}) {
     if (k->width > options_.max_width || k->height > options_.max_height) {
       throw InputError(fmt::format("image {}x{} exceeds this renderer's {}x{}", k->width, k->height,

@@ -3,6 +3,7 @@
 
 #include <Eigen/Geometry>
 #include <memory>
+#include <optional>
 #include <opencv2/core.hpp>
 #include <string>
 #include <string_view>
@@ -42,6 +43,7 @@ struct RenderRequest {
   bool depth = false;  ///< depth image (metres) at the camera's depth intrinsics
   int width = 0;       ///< override the colour resolution (0 = the camera's); intrinsics scale with it
   int height = 0;      ///< override the colour resolution (0 = the camera's)
+  std::optional<CameraIntrinsics> intrinsics;  ///< render this pinhole instead (colour and depth) when set
 };
 
 /// One camera's output at one instant, with its calibration in the `sandtray` frame.
