@@ -211,6 +211,11 @@ Renderer::Renderer(std::shared_ptr<const StageModel> model, RendererOptions opti
   m->vis.global.offwidth = options.max_width;
   m->vis.global.offheight = options.max_height;
   m->vis.quality.offsamples = options.preset == VisualPreset::fast ? 0 : 4;
+  if (options.preset == VisualPreset::fast) {  // coarser tessellation of spheres, capsules and ellipsoids
+    m->vis.quality.numslices = 14;
+    m->vis.quality.numstacks = 8;
+    m->vis.quality.numquads = 1;
+  }
   if (options.backend == GlBackend::osmesa) {
     impl_->gl = std::make_unique<OsMesaContext>(options.max_width, options.max_height);
   } else {

@@ -388,7 +388,7 @@ StageModel::StageModel(const StageConfig& config) : config_(config) {
   </asset>
   <worldbody>
     <light name="ceiling" pos="0.3 -0.17 2.2" dir="0 0 -1" diffuse="0.5 0.5 0.5" specular="0.1 0.1 0.1" castshadow="true"/>
-    <geom name="floor" type="plane" pos="0 0 {floor}" size="3 3 0.1" material="floor"/>
+    <geom name="floor" type="plane" pos="0 0 {floor}" size="3 3 0.5" material="floor"/>
     <geom name="wall_back" type="box" pos="-1.3 -0.17 0.75" size="0.02 2.5 1.0" material="wall"/>
     <geom name="wall_front" type="box" pos="2.3 -0.17 0.75" size="0.02 2.5 1.0" material="wall"/>
     <geom name="wall_purple" type="box" pos="0.5 -2.2 0.75" size="1.8 0.02 1.0" material="wall"/>
