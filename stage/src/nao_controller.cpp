@@ -249,6 +249,13 @@ Eigen::Vector2d NaoController::path_point(double time) const {
 
 PointingResult NaoController::update(double time) { return point_at(path_point(time)); }
 
+void NaoController::set_hands(double left_opening, double right_opening) {
+  NaoJointVector targets = targets_;
+  targets[static_cast<size_t>(nao_joint_index("LHand"))] = left_opening;
+  targets[static_cast<size_t>(nao_joint_index("RHand"))] = right_opening;
+  set_joint_targets(targets);
+}
+
 ArmReachDisc NaoController::arm_reach() const {
   const Vector3d shoulder = Eigen::Map<const Vector3d>(stage_.data()->xpos + 3 * nao_.rshoulder_body);
   const double reach = stage_.model().config().arm_reach;

@@ -3,7 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <opencv2/imgproc.hpp>
+#include <thread>
 
 #include "freeplay/core/error.hpp"
 #include "freeplay/stage/avatar_controller.hpp"
@@ -189,6 +191,25 @@ TEST_F(RenderTest, ResolutionOverrideScalesTheIntrinsics) {
   EXPECT_NEAR(frame.K.cx, (479.047 + 0.5) / 2 - 0.5, 1e-9);
   request.height = 0;
   EXPECT_THROW(renderer_->render(stage, "camera_purple", request), InputError);
+}
+
+TEST(RendererThreads, OneRendererPerThreadRendersTheSameImage) {
+  const auto model = StageModel::create({});
+  const Stage stage(model);
+  std::array<cv::Mat, 2> images;
+  std::array<std::thread, 2> threads;
+  for (size_t i = 0; i < threads.size(); ++i) {
+    threads[i] = std::thread([&, i] {
+      Renderer renderer(model, RendererOptions{GlBackend::osmesa, VisualPreset::fast, 960, 540});
+      images[i] = renderer.render(stage, "camera_yellow").rgb;
+    });
+  }
+  for (auto& thread : threads) thread.join();
+  cv::Mat difference;
+  cv::absdiff(images[0], images[1], difference);
+  double largest = 0;
+  cv::minMaxLoc(difference.reshape(1), nullptr, &largest);
+  EXPECT_LE(largest, 1.0);
 }
 
 TEST(RendererNames, ParseAndReject) {

@@ -58,6 +58,15 @@ TEST(StageModel, CamerasSitAtTheSandtrayXacroPoses) {
   EXPECT_LT(env.linear().col(1).z(), 0.0);
 }
 
+TEST(StageModel, OpticalFramesMatchThePinsoroDatasetQuaternions) {
+  // dataset data/README.md: optical frames relative to sandtray_centre (same axes as sandtray), (x, y, z, w)
+  const Stage stage(StageModel::create({}));
+  const Eigen::Quaterniond purple(stage.camera_pose("camera_purple").linear());
+  const Eigen::Quaterniond yellow(stage.camera_pose("camera_yellow").linear());
+  EXPECT_NEAR(std::abs(purple.coeffs().dot(Eigen::Vector4d(0.220, -0.530, 0.757, -0.314))), 1.0, 1e-3);
+  EXPECT_NEAR(std::abs(yellow.coeffs().dot(Eigen::Vector4d(-0.530, 0.220, -0.314, 0.757))), 1.0, 1e-3);
+}
+
 TEST(StageModel, EachSr300FacesItsChildAcrossTheTable) {
   const Stage stage(StageModel::create({}));
   for (ChildRole role : {ChildRole::purple, ChildRole::yellow}) {

@@ -74,6 +74,9 @@ class NaoController {
   /// The path's target at `time`.
   Eigen::Vector2d path_point(double time) const;
 
+  /// Opens (1) or closes (0) the hands; values are clamped to [0, 1].
+  void set_hands(double left_opening, double right_opening);
+
   /// The real system's arm reach disc for the current pose.
   ArmReachDisc arm_reach() const;
   /// Dynamic mode: refreshes gravity feed-forward of the position targets (call once per control tick).
