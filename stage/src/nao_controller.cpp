@@ -73,14 +73,14 @@ void NaoController::apply() {
   mj_kinematics(m, scratch_);
   mj_comPos(m, scratch_);
   mj_comVel(m, scratch_);
-  std::vector<mjtNum> gravity(static_cast<size_t>(m->nv));
-  mj_rne(m, scratch_, 0, gravity.data());
+  gravity_.resize(static_cast<size_t>(m->nv));
+  mj_rne(m, scratch_, 0, gravity_.data());
   mjData* d = stage_.data();
   for (int i = 0; i < kNaoJointCount; ++i) {
     const int actuator = nao_.actuator[static_cast<size_t>(i)];
     if (actuator < 0) continue;
     const double kp = m->actuator_gainprm[actuator * mjNGAIN];
-    const double feed_forward = gravity[static_cast<size_t>(nao_.dof[static_cast<size_t>(i)])] / kp;
+    const double feed_forward = gravity_[static_cast<size_t>(nao_.dof[static_cast<size_t>(i)])] / kp;
     d->ctrl[actuator] = std::clamp(targets_[static_cast<size_t>(i)] + feed_forward, m->actuator_ctrlrange[2 * actuator],
                                    m->actuator_ctrlrange[2 * actuator + 1]);
   }

@@ -1,6 +1,7 @@
 #include "freeplay/stage/stage.hpp"
 
 #include <atomic>
+#include <stdexcept>
 #include <opencv2/imgproc.hpp>
 
 #include "freeplay/core/error.hpp"
@@ -57,6 +58,8 @@ void Stage::update_kinematics() {
 }
 
 void Stage::step(int steps) {
+  if (mode_ != StageMode::dynamic) throw std::logic_error("Stage::step needs a stage made in dynamic mode");
+  if (steps < 0) throw InputError("step count must not be negative", "steps", ">= 0");
   const mjModel* m = model_->mj();
   held_qpos_.resize(avatar_qpos_.size());
   for (size_t i = 0; i < avatar_qpos_.size(); ++i) held_qpos_[i] = data_->qpos[avatar_qpos_[i]];

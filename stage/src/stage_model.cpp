@@ -318,7 +318,7 @@ mjModel* StageModel::load_mjcf_file(const std::filesystem::path& path) {
 }
 
 StageModel::StageModel(const StageConfig& config) : config_(config) {
-  const ChildDimensions dims = child_dimensions(config.child_age_years);  // validates the age
+  child_dimensions(config.child_age_years);  // validates the age before any work
   if (config.cushion_height < 0.0 || config.cushion_height > 0.3) {
     throw InputError("cushion height out of range", "cushion_height", "0 to 0.3 m");
   }
@@ -419,7 +419,6 @@ StageModel::StageModel(const StageConfig& config) : config_(config) {
     }
   }
   model_ = load_from_string(mjcf_);
-  (void)dims;
   try {
     index_model();
     if (nao_.present) place_nao();

@@ -57,6 +57,11 @@ TEST(Avatar, HeadTurnsToLookAtATarget) {
   EXPECT_TRUE(behind.clamped);
 }
 
+TEST(Stage, StepNeedsDynamicMode) {
+  Stage stage(children_model());
+  EXPECT_THROW(stage.step(1), std::logic_error);
+}
+
 TEST(Avatar, TheYellowChildIsAbsentInChildRobotScenes) {
   StageConfig config;
   config.scene = SceneKind::child_robot;

@@ -91,6 +91,7 @@ class NaoController {
   const NaoIndex& nao_;
   NaoJointVector targets_{};
   mjData* scratch_ = nullptr;
+  std::vector<mjtNum> gravity_;
   std::vector<TimedScreenPoint> path_;
 };
 

@@ -48,7 +48,7 @@ class Stage {
 
   /// Recomputes every pose (bodies, sites, cameras) from the joint angles: the kinematic update.
   void update_kinematics();
-  /// Dynamic mode: advances the physics `steps` timesteps (2 ms each); avatars keep their kinematic pose.
+  /// Dynamic mode only: advances the physics `steps` timesteps (2 ms each); avatars keep their kinematic pose.
   void step(int steps = 1);
 
   /// World (sandtray) position of a MuJoCo site after the last update.
