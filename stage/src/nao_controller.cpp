@@ -1,0 +1,270 @@
+#include "freeplay/stage/nao_controller.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+#include "freeplay/core/error.hpp"
+#include "freeplay/stage/pan_tilt.hpp"
+
+namespace freeplay::stage {
+namespace {
+
+using Eigen::Vector3d;
+using RowMatrix3d = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
+
+// Right-arm joints used for pointing, as indices into kNaoJointNames.
+constexpr std::array<int, 5> kRightArm = {20, 21, 22, 23, 24};
+// A comfortable pointing posture the IK starts from and is pulled towards in its null space.
+constexpr std::array<double, 5> kPointingSeed = {0.5, -0.25, 1.2, 0.9, 0.0};
+constexpr int kLHipYawPitch = 8;
+constexpr int kRHipYawPitch = 14;
+
+}  // namespace
+
+NaoController::NaoController(Stage& stage) : stage_(stage), nao_(stage.model().nao()) {
+  if (!nao_.present) throw InputError("this stage has no NAO (use the child-robot scene)", "scene", "child-robot");
+  const mjData* d = stage_.data();
+  for (int i = 0; i < kNaoJointCount; ++i) targets_[static_cast<size_t>(i)] = d->qpos[nao_.qpos[static_cast<size_t>(i)]];
+}
+
+NaoController::~NaoController() {
+  if (scratch_ != nullptr) mj_deleteData(scratch_);
+}
+
+NaoJointVector NaoController::joint_positions() const {
+  NaoJointVector q{};
+  for (int i = 0; i < kNaoJointCount; ++i) q[static_cast<size_t>(i)] = stage_.data()->qpos[nao_.qpos[static_cast<size_t>(i)]];
+  return q;
+}
+
+void NaoController::set_joint_targets(const NaoJointVector& targets) {
+  const mjModel* m = stage_.model().mj();
+  for (int i = 0; i < kNaoJointCount; ++i) {
+    const int joint = nao_.joint[static_cast<size_t>(i)];
+    targets_[static_cast<size_t>(i)] =
+        std::clamp(targets[static_cast<size_t>(i)], m->jnt_range[2 * joint], m->jnt_range[2 * joint + 1]);
+  }
+  targets_[kRHipYawPitch] = targets_[kLHipYawPitch];
+  write_targets();
+}
+
+void NaoController::write_targets() {
+  mjData* d = stage_.data();
+  if (stage_.mode() == StageMode::kinematic) {
+    for (int i = 0; i < kNaoJointCount; ++i) d->qpos[nao_.qpos[static_cast<size_t>(i)]] = targets_[static_cast<size_t>(i)];
+  }
+  apply();
+}
+
+void NaoController::apply() {
+  if (stage_.mode() != StageMode::dynamic) return;
+  // Position targets plus the gravity torque at the target pose divided by the servo gain (feed-forward), so
+  // the arm settles on the target instead of sagging by τ_gravity / kp.
+  const mjModel* m = stage_.model().mj();
+  if (scratch_ == nullptr) scratch_ = mj_makeData(m);
+  mju_copy(scratch_->qpos, stage_.data()->qpos, m->nq);
+  mju_copy(scratch_->mocap_pos, stage_.data()->mocap_pos, 3 * m->nmocap);
+  mju_copy(scratch_->mocap_quat, stage_.data()->mocap_quat, 4 * m->nmocap);
+  for (int i = 0; i < kNaoJointCount; ++i) scratch_->qpos[nao_.qpos[static_cast<size_t>(i)]] = targets_[static_cast<size_t>(i)];
+  mju_zero(scratch_->qvel, m->nv);
+  mj_kinematics(m, scratch_);
+  mj_comPos(m, scratch_);
+  mj_comVel(m, scratch_);
+  gravity_.resize(static_cast<size_t>(m->nv));
+  mj_rne(m, scratch_, 0, gravity_.data());
+  mjData* d = stage_.data();
+  for (int i = 0; i < kNaoJointCount; ++i) {
+    const int actuator = nao_.actuator[static_cast<size_t>(i)];
+    if (actuator < 0) continue;
+    const double kp = m->actuator_gainprm[actuator * mjNGAIN];
+    const double feed_forward = gravity_[static_cast<size_t>(nao_.dof[static_cast<size_t>(i)])] / kp;
+    d->ctrl[actuator] = std::clamp(targets_[static_cast<size_t>(i)] + feed_forward, m->actuator_ctrlrange[2 * actuator],
+                                   m->actuator_ctrlrange[2 * actuator + 1]);
+  }
+}
+
+void NaoController::place_base(const NaoJointVector& posture) {
+  const mjModel* m = stage_.model().mj();
+  if (scratch_ == nullptr) scratch_ = mj_makeData(m);
+  for (int i = 0; i < kNaoJointCount; ++i) scratch_->qpos[nao_.qpos[static_cast<size_t>(i)]] = posture[static_cast<size_t>(i)];
+  const int mocap = nao_.torso_mocap;
+  mju_zero3(scratch_->mocap_pos + 3 * mocap);
+  mju_unit4(scratch_->mocap_quat + 4 * mocap);
+  mj_kinematics(m, scratch_);
+  const Vector3d l_sole = Eigen::Map<const Vector3d>(scratch_->site_xpos + 3 * nao_.l_sole_site);
+  const Vector3d r_sole = Eigen::Map<const Vector3d>(scratch_->site_xpos + 3 * nao_.r_sole_site);
+  const RowMatrix3d sole_r = Eigen::Map<const RowMatrix3d>(scratch_->site_xmat + 9 * nao_.l_sole_site);
+  const Eigen::Matrix3d torso_r =
+      Eigen::AngleAxisd(nao_.facing_yaw, Vector3d::UnitZ()).toRotationMatrix() * sole_r.transpose();
+  // Soles' midpoint over the anchor; the lower sole on the floor (both are flat and level in every posture).
+  const Vector3d l_world = torso_r * l_sole;
+  const Vector3d r_world = torso_r * r_sole;
+  Vector3d torso_p = nao_.sole_anchor - 0.5 * (l_world + r_world);
+  torso_p.z() = nao_.sole_anchor.z() - std::min(l_world.z(), r_world.z());
+  const Eigen::Quaterniond q(torso_r);
+  mjData* d = stage_.data();
+  for (int k = 0; k < 3; ++k) d->mocap_pos[3 * mocap + k] = torso_p[k];
+  d->mocap_quat[4 * mocap] = q.w();
+  d->mocap_quat[4 * mocap + 1] = q.x();
+  d->mocap_quat[4 * mocap + 2] = q.y();
+  d->mocap_quat[4 * mocap + 3] = q.z();
+}
+
+void NaoController::go_to_posture(NaoPosture posture) {
+  set_joint_targets(posture_angles(posture));  // clamps the table's 4-decimal values into the joint ranges
+  place_base(targets_);
+  if (stage_.mode() == StageMode::dynamic) {
+    // The posture change itself is not simulated: the robot starts there at rest.
+    mjData* d = stage_.data();
+    for (int i = 0; i < kNaoJointCount; ++i) {
+      d->qpos[nao_.qpos[static_cast<size_t>(i)]] = targets_[static_cast<size_t>(i)];
+      d->qvel[nao_.dof[static_cast<size_t>(i)]] = 0.0;
+    }
+    apply();
+  }
+}
+
+GazeResult NaoController::look_at(const Eigen::Vector3d& point) {
+  stage_.update_kinematics();
+  const mjData* d = stage_.data();
+  // Pan/tilt is solved in the torso-aligned frame at the neck; the gaze origin is CameraTop's position.
+  const RowMatrix3d torso_r = Eigen::Map<const RowMatrix3d>(d->xmat + 9 * nao_.torso_body);
+  const Vector3d neck = Eigen::Map<const Vector3d>(d->xpos + 3 * nao_.neck_body);
+  const Vector3d target = torso_r.transpose() * (point - neck);
+  const mjModel* m = stage_.model().mj();
+  const Vector3d eye_offset = Eigen::Map<const Vector3d>(m->site_pos + 3 * nao_.gaze_site);
+  const PanTilt wanted = pan_tilt_towards(target, eye_offset);
+  GazeResult result;
+  result.yaw = std::clamp(wanted.yaw, -2.0857, 2.0857);
+  const HeadPitchRange range = head_pitch_range(result.yaw);
+  result.pitch = std::clamp(wanted.pitch, range.min, range.max);
+  result.clamped = result.yaw != wanted.yaw || result.pitch != wanted.pitch;
+  NaoJointVector targets = targets_;
+  targets[0] = result.yaw;
+  targets[1] = result.pitch;
+  set_joint_targets(targets);
+  return result;
+}
+
+PointingResult NaoController::solve_pointing(const Vector3d& target, const NaoJointVector& seed, NaoJointVector* out) {
+  const mjModel* m = stage_.model().mj();
+  if (scratch_ == nullptr) scratch_ = mj_makeData(m);
+  mju_copy(scratch_->qpos, stage_.data()->qpos, m->nq);
+  mju_copy(scratch_->mocap_pos, stage_.data()->mocap_pos, 3 * m->nmocap);
+  mju_copy(scratch_->mocap_quat, stage_.data()->mocap_quat, 4 * m->nmocap);
+  for (int i = 0; i < kNaoJointCount; ++i) scratch_->qpos[nao_.qpos[static_cast<size_t>(i)]] = seed[static_cast<size_t>(i)];
+  std::vector<mjtNum> jacobian(static_cast<size_t>(3 * m->nv));
+  Eigen::Matrix<double, 3, 5> j;
+  const Eigen::Vector3d weights(1.0, 1.0, 0.3);  // the on-screen position matters more than the hover height
+  constexpr double kDamping = 0.01;
+  Vector3d fingertip = Vector3d::Zero();
+  for (int iteration = 0; iteration < 150; ++iteration) {
+    mj_kinematics(m, scratch_);
+    mj_comPos(m, scratch_);
+    fingertip = Eigen::Map<const Vector3d>(scratch_->site_xpos + 3 * nao_.fingertip_site);
+    const Vector3d error = (target - fingertip).cwiseProduct(weights);
+    if (error.head<2>().norm() < 1e-4 && std::abs(error.z()) < 1e-3) break;
+    mj_jacSite(m, scratch_, jacobian.data(), nullptr, nao_.fingertip_site);
+    Eigen::Matrix<double, 5, 1> q, lo, hi, preferred;
+    for (size_t c = 0; c < kRightArm.size(); ++c) {
+      const int k = kRightArm[c];
+      const int dof = nao_.dof[static_cast<size_t>(k)];
+      for (int r = 0; r < 3; ++r) j(r, static_cast<Eigen::Index>(c)) = jacobian[static_cast<size_t>(r * m->nv + dof)] * weights[r];
+      const int joint = nao_.joint[static_cast<size_t>(k)];
+      q[static_cast<Eigen::Index>(c)] = scratch_->qpos[nao_.qpos[static_cast<size_t>(k)]];
+      lo[static_cast<Eigen::Index>(c)] = m->jnt_range[2 * joint];
+      hi[static_cast<Eigen::Index>(c)] = m->jnt_range[2 * joint + 1];
+      preferred[static_cast<Eigen::Index>(c)] = kPointingSeed[c];
+    }
+    const Eigen::Matrix3d jjt = j * j.transpose() + kDamping * kDamping * Eigen::Matrix3d::Identity();
+    const Eigen::Matrix<double, 5, 3> pseudo_inverse = j.transpose() * jjt.ldlt().solve(Eigen::Matrix3d::Identity());
+    Eigen::Matrix<double, 5, 1> step = pseudo_inverse * error;
+    const Eigen::Matrix<double, 5, 5> null_space = Eigen::Matrix<double, 5, 5>::Identity() - pseudo_inverse * j;
+    step += null_space * (0.05 * (preferred - q));
+    const double largest = step.cwiseAbs().maxCoeff();
+    if (largest > 0.2) step *= 0.2 / largest;
+    q = (q + step).cwiseMax(lo).cwiseMin(hi);
+    for (size_t c = 0; c < kRightArm.size(); ++c) {
+      scratch_->qpos[nao_.qpos[static_cast<size_t>(kRightArm[c])]] = q[static_cast<Eigen::Index>(c)];
+    }
+  }
+  mj_kinematics(m, scratch_);
+  fingertip = Eigen::Map<const Vector3d>(scratch_->site_xpos + 3 * nao_.fingertip_site);
+  *out = seed;
+  for (int k : kRightArm) (*out)[static_cast<size_t>(k)] = scratch_->qpos[nao_.qpos[static_cast<size_t>(k)]];
+  PointingResult result;
+  result.fingertip = fingertip;
+  result.error_m = (target - fingertip).head<2>().norm();
+  result.height_m = fingertip.z();
+  result.reachable = result.error_m <= kReachTolerance && fingertip.z() > 0.0 && fingertip.z() < 0.1;
+  return result;
+}
+
+PointingResult NaoController::point_at(const Eigen::Vector2d& screen_point) {
+  if (!screen_point.allFinite()) throw InputError("pointing target is not finite", "screen point");
+  const Vector3d target(screen_point.x(), screen_point.y(), kHoverHeight);
+  NaoJointVector solution{};
+  PointingResult best = solve_pointing(target, targets_, &solution);
+  if (!best.reachable) {
+    NaoJointVector seed = targets_;
+    for (size_t c = 0; c < kRightArm.size(); ++c) seed[static_cast<size_t>(kRightArm[c])] = kPointingSeed[c];
+    NaoJointVector second{};
+    const PointingResult retry = solve_pointing(target, seed, &second);
+    if (retry.error_m < best.error_m) {
+      best = retry;
+      solution = second;
+    }
+  }
+  set_joint_targets(solution);
+  return best;
+}
+
+void NaoController::follow_path(std::vector<TimedScreenPoint> path) {
+  if (path.empty()) throw InputError("a pointing path needs at least one point", "path", "one or more timed points");
+  for (size_t i = 0; i < path.size(); ++i) {
+    if (!path[i].point.allFinite() || !std::isfinite(path[i].time)) {
+      throw InputError(fmt::format("path point {} is not finite", i), fmt::format("path[{}]", i));
+    }
+    if (i > 0 && path[i].time <= path[i - 1].time) {
+      throw InputError(fmt::format("path times must increase (point {} at {} s)", i, path[i].time),
+                       fmt::format("path[{}].time", i), "strictly increasing times");
+    }
+  }
+  path_ = std::move(path);
+}
+
+Eigen::Vector2d NaoController::path_point(double time) const {
+  if (path_.empty()) throw InputError("no path set (call follow_path first)", "path");
+  if (time <= path_.front().time) return path_.front().point;
+  if (time >= path_.back().time) return path_.back().point;
+  const auto next = std::upper_bound(path_.begin(), path_.end(), time,
+                                     [](double t, const TimedScreenPoint& p) { return t < p.time; });
+  const auto prev = next - 1;
+  const double f = (time - prev->time) / (next->time - prev->time);
+  return prev->point + f * (next->point - prev->point);
+}
+
+PointingResult NaoController::update(double time) { return point_at(path_point(time)); }
+
+void NaoController::set_hands(double left_opening, double right_opening) {
+  NaoJointVector targets = targets_;
+  targets[static_cast<size_t>(nao_joint_index("LHand"))] = left_opening;
+  targets[static_cast<size_t>(nao_joint_index("RHand"))] = right_opening;
+  set_joint_targets(targets);
+}
+
+ArmReachDisc NaoController::arm_reach() const {
+  const Vector3d shoulder = Eigen::Map<const Vector3d>(stage_.data()->xpos + 3 * nao_.rshoulder_body);
+  const double reach = stage_.model().config().arm_reach;
+  ArmReachDisc disc;
+  disc.centre = shoulder.head<2>();
+  const double h = shoulder.z();  // the screen surface is the z = 0 plane
+  disc.too_high = h > reach;
+  disc.radius = disc.too_high ? 0.0 : std::sqrt(reach * reach - h * h);
+  return disc;
+}
+
+}  // namespace freeplay::stage
