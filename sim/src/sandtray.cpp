@@ -718,6 +718,22 @@ std::optional<std::string> Sandtray::robot_item() const {
 
 std::optional<Vec2> Sandtray::robot_hand() const { return impl_->robot.hand; }
 
+void Sandtray::place_item(const std::string& name, const Pose2& pose) {
+  Impl& d = *impl_;
+  const std::size_t index = d.catalogue->index_of(name);
+  if (!std::isfinite(pose.x) || !std::isfinite(pose.y) || !std::isfinite(pose.theta)) {
+    throw InputError(fmt::format("pose of '{}' is not finite", name), "pose", "finite x, y (m) and theta (rad)");
+  }
+  if (pose.x < 0.0 || pose.x > kScreenWidthM || pose.y > 0.0 || pose.y < -kScreenHeightM) {
+    throw InputError(fmt::format("centre ({}, {}) of '{}' is off the screen", pose.x, pose.y, name), "pose",
+                     "x in [0, 0.6], y in [-0.335, 0] (sandtray frame, m)");
+  }
+  if (!d.holders_of(static_cast<int>(index)).empty()) {
+    throw InputError(fmt::format("'{}' is being held", name), "item", "an item nobody holds");
+  }
+  d.place(d.items[index], pose.position(), pose.theta);
+}
+
 void Sandtray::step(double dt) {
   if (!std::isfinite(dt) || dt < 0.0 || dt > 3600.0) {
     throw InputError(fmt::format("time step {} s is not allowed", dt), "dt", "0 <= dt <= 3600 seconds");

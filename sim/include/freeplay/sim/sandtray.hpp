@@ -126,6 +126,11 @@ class Sandtray {
   /// Where the robot's hand sprite is shown (last pose, until the 1 s release timer expires).
   std::optional<Vec2> robot_hand() const;
 
+  // --- setup only (tools and tests; not a game action, nothing in the real game does this) ---------------------
+  /// Teleports `name` to `pose` at rest (a layout for tools and tests); throws InputError, changing nothing, for an
+  /// unknown item, a non-finite pose, a centre off the screen or an item someone holds.
+  void place_item(const std::string& name, const Pose2& pose);
+
   // --- time ---------------------------------------------------------------------------------------------------
   /// Advances the game by `dt` seconds (physics at 60 Hz substeps, timers, background republication).
   void step(double dt);
