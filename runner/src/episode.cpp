@@ -129,6 +129,19 @@ struct RobotGaze {
   std::string target;  // item name or seat
 };
 
+/// The robot body as the executor's arm follower (`nao_behaviours` following `/poses`).
+class BodyFollower final : public planning::ArmFollower {
+ public:
+  explicit BodyFollower(RobotBody& body) : body_(body) {}
+  planning::FollowReport follow(const Vec2& finger, double /*t*/) override {
+    const auto reach = body_.reach();
+    return {body_.follow_finger(finger), (finger - reach.centre).norm() < reach.radius};
+  }
+
+ private:
+  RobotBody& body_;
+};
+
 /// Last mover and time of each item (for "took an item from" metrics).
 struct ItemHistory {
   std::string last_mover;  // "purple", "yellow", "robot" or ""
@@ -155,12 +168,18 @@ class Episode {
       policies::PolicyContext context;
       for (const auto& item : models.catalogue->items()) context.item_names.push_back(item.name);
       policy_->reset(context, seeds_.stream("policy"));
+      body_ = models.robot_body(scenario.robot_mode, scenario.arm_reach_m);
+      follower_ = std::make_unique<BodyFollower>(*body_);
       planning::MoveExecutorConfig config;
       config.time_budget_s = scenario.planner_budget_s;
+      config.finger_speed_mps = scenario.finger_speed_mps;
+      const auto disc = body_->reach();
+      config.arm_reach = planning::ArmReach{
+          disc.centre, scenario.arm_reach_m,
+          std::sqrt(std::max(0.0, scenario.arm_reach_m * scenario.arm_reach_m - disc.radius * disc.radius))};
       executor_ = std::make_unique<planning::MoveExecutor>(
           std::shared_ptr<const planning::MotionPlanner>(planning::make_planner(scenario.planner)), config);
       planner_rng_ = seeds_.stream("planner");
-      body_ = models.robot_body(scenario.robot_mode, scenario.arm_reach_m);
       perception_ = std::make_unique<PerceptionModel>(
           PerceptionSettings{scenario.face_detection_rate, scenario.perception_latency_s, scenario.gaze_noise_deg},
           seeds_.stream("perception"));
@@ -495,6 +514,17 @@ class Episode {
                                    policy_->name(), t, move.item, move.target.x(), move.target.y()),
                        "MoveItem", fmt::format("an item of {} and a finite target", models_.catalogue->names()));
     }
+    executor_->start({move.item, move.target}, move_world(), planner_rng_);
+    move_unreported_ = executor_->status() != planning::MoveStatus::Running;
+    current_move_item_ = move.item;
+    move_target_ = move.target;
+    count_action("move", t);
+    ++moves_started_;
+    log_.emit({now(), "robot", "move_goal", {{"item", move.item}, {"x", move.target.x()}, {"y", move.target.y()}}});
+    robot_gaze_ = {RobotGaze::Kind::Item, move.item};
+  }
+
+  planning::MoveWorld move_world() {
     planning::MoveWorld world;
     world.item_centre = [this](const std::string& name) -> std::optional<Vec2> {
       if (models_.catalogue->find(name) == nullptr) return std::nullopt;
@@ -509,13 +539,13 @@ class Episode {
       }
       return obstacles;
     };
-    executor_->start({move.item, move.target}, world, planner_rng_);
-    current_move_item_ = move.item;
-    move_target_ = move.target;
-    count_action("move", t);
-    ++moves_started_;
-    log_.emit({now(), "robot", "move_goal", {{"item", move.item}, {"x", move.target.x()}, {"y", move.target.y()}}});
-    robot_gaze_ = {RobotGaze::Kind::Item, move.item};
+    world.held_by_child = [this](const std::string& name) {
+      for (const auto& h : tray_.item(name).holders) {
+        if (h.kind == sim::Holder::Kind::Finger) return true;
+      }
+      return false;
+    };
+    return world;
   }
 
   void handle(const policies::Action& action, double t) {
@@ -551,19 +581,20 @@ class Episode {
 
   void step_robot(double t) {
     for (const auto& action : policy_->decide(observe(t))) handle(action, t);
-    const auto before = executor_->status();
-    executor_->step(
-        kTickS,
-        [&](const planning::TimedPose& pose) {
-          tray_.robot_pose(pose.position);
-          const Vec2 tip = body_->follow_finger(pose.position);
-          sync_errors_mm_.push_back((tip - pose.position).norm() * 1000.0);
-          last_pose_t_ = t;
-        },
-        [](int /*percentage*/) {});
-    const auto after = executor_->status();
-    if (before == planning::MoveStatus::Running && after != planning::MoveStatus::Running) finish_move(after, t);
-    if (after == planning::MoveStatus::Aborted && before != planning::MoveStatus::Aborted) finish_move(after, t);
+    if (move_unreported_) {  // a move that ended in start() (refused or unplannable)
+      move_unreported_ = false;
+      finish_move(executor_->status(), t);
+    }
+    if (executor_->status() == planning::MoveStatus::Running) {
+      planning::MoveOutputs outputs;
+      outputs.finger = [&](const planning::TimedPose& pose) {
+        tray_.robot_pose(pose.position);
+        last_pose_t_ = t;
+      };
+      outputs.arm = follower_.get();
+      executor_->step(kTickS, move_world(), outputs);
+      if (executor_->status() != planning::MoveStatus::Running) finish_move(executor_->status(), t);
+    }
     if (speech_pending_result_ && t >= robot_speaking_until_) {
       speech_pending_result_ = false;
       policy_->on_result({policies::ActionResult::Kind::SpeechFinished, "", ""});
@@ -575,39 +606,42 @@ class Episode {
   }
 
   void finish_move(planning::MoveStatus status, double t) {
-    const auto outcome = executor_->outcome();
+    const auto& outcome = executor_->current();
     policies::ActionResult result;
     result.item = current_move_item_;
-    nlohmann::json data{{"item", current_move_item_}};
-    if (outcome) {
-      planning_times_s_.push_back(outcome->plan.metrics.planning_time_s);
-      if (outcome->plan.ok) {
-        path_lengths_m_.push_back(outcome->plan.metrics.path_length_m);
-        move_durations_s_.push_back(static_cast<double>(outcome->poses_sent) * kTickS);
-      }
-      data["target_in_reach"] = outcome->target_in_reach;
-      data["poses"] = outcome->poses_sent;
+    nlohmann::json data{{"item", current_move_item_},
+                        {"status", std::string(planning::move_status_name(status))},
+                        {"reason", outcome.reason()},
+                        {"target_in_reach", outcome.target_in_reach},
+                        {"poses", outcome.poses_sent}};
+    planning_times_s_.push_back(outcome.plan.metrics.planning_time_s);
+    if (outcome.plan.ok) {
+      path_lengths_m_.push_back(outcome.plan.metrics.path_length_m);
+      clearances_mm_.push_back(outcome.plan.metrics.min_clearance_m * 1000.0);
     }
+    if (outcome.sync.samples > 0) {
+      sync_mean_mm_.push_back(outcome.sync.mean_error_m * 1000.0);
+      sync_max_mm_ = std::max(sync_max_mm_, outcome.sync.max_error_m * 1000.0);
+      sync_lag_ms_.push_back(outcome.sync.best_lag_s * 1000.0);
+    }
+    if (outcome.poses_sent > 0) move_durations_s_.push_back(outcome.execution_duration_s);
     switch (status) {
       case planning::MoveStatus::Succeeded:
         result.kind = policies::ActionResult::Kind::MoveSucceeded;
         ++moves_succeeded_;
         pending_placement_[current_move_item_] = move_target_;
-        data["status"] = "succeeded";
         break;
       case planning::MoveStatus::Preempted:
         result.kind = policies::ActionResult::Kind::MoveCancelled;
         ++moves_cancelled_;
-        data["status"] = "cancelled";
         break;
       default:
         result.kind = policies::ActionResult::Kind::MoveFailed;
-        result.reason = outcome ? outcome->plan.message : "";
+        result.reason = outcome.reason();
         ++moves_failed_;
-        data["status"] = "failed";
-        data["reason"] = result.reason;
         break;
     }
+    if (outcome.stolen_by_child) ++moves_stolen_;
     log_.emit({now(), "robot", "move_result", std::move(data)});
     robot_gaze_ = {RobotGaze::Kind::Tray, ""};
     policy_->on_result(result);
@@ -633,11 +667,24 @@ class Episode {
   void drain_tray_events() {
     const double t = tray_.time() - freeplay_start_;
     for (auto& e : tray_.drain_events()) {
-      if (e.type == "interaction_event") pending_interaction_events_.push_back(e.data.value("message", ""));
+      if (e.type == "interaction_event") {
+        const auto message = e.data.value("message", "");
+        pending_interaction_events_.push_back(message);
+        if (message.rfind("releasing_", 0) == 0) on_robot_release(message.substr(10));
+      }
       if (e.type == "item_grabbed") on_grab(e.data, t);
       if (e.type == "item_released") on_release(e.data, t);
       log_.emit(std::move(e));
     }
+  }
+
+  void on_robot_release(const std::string& item) {
+    const auto it = pending_placement_.find(item);
+    if (it == pending_placement_.end() || models_.catalogue->find(item) == nullptr) return;
+    const Vec2 at = tray_.item(item).pose.position();
+    placement_errors_mm_.push_back((at - it->second).norm() * 1000.0);
+    if (executor_->status() != planning::MoveStatus::Running) executor_->observe_release(at);
+    pending_placement_.erase(it);
   }
 
   void on_grab(const nlohmann::json& data, double t) {
@@ -667,10 +714,6 @@ class Episode {
     if (zone_colour_at(at) != h.zone_at_grab) ++zone_transitions_;
     if (mover == "robot") {
       ++robot_item_moves_;
-      if (const auto it = pending_placement_.find(item); it != pending_placement_.end()) {
-        placement_errors_mm_.push_back((at - it->second).norm() * 1000.0);
-        pending_placement_.erase(it);
-      }
     } else {
       for (auto& c : children_) {
         if (c.seat_name == mover) ++c.item_moves;
@@ -752,11 +795,13 @@ class Episode {
       metrics["planner"]["moves_failed"] = moves_failed_;
       metrics["planner"]["moves_cancelled"] = moves_cancelled_;
       metrics["planner"]["path_length_m"] = mean_or_nan(path_lengths_m_);
+      metrics["planner"]["min_clearance_mm"] = mean_or_nan(clearances_mm_);
+      metrics["executor"]["moves_stolen_by_child"] = moves_stolen_;
       metrics["executor"]["move_duration_s"] = mean_or_nan(move_durations_s_);
       metrics["executor"]["placement_error_mm"] = mean_or_nan(placement_errors_mm_);
-      metrics["executor"]["sync_error_mm_mean"] = mean_or_nan(sync_errors_mm_);
-      metrics["executor"]["sync_error_mm_max"] =
-          sync_errors_mm_.empty() ? std::nan("") : *std::max_element(sync_errors_mm_.begin(), sync_errors_mm_.end());
+      metrics["executor"]["sync_error_mm_mean"] = mean_or_nan(sync_mean_mm_);
+      metrics["executor"]["sync_error_mm_max"] = sync_mean_mm_.empty() ? std::nan("") : sync_max_mm_;
+      metrics["executor"]["sync_lag_ms"] = mean_or_nan(sync_lag_ms_);
     }
     nlohmann::json children = nlohmann::json::object();
     for (const auto& c : children_) {
@@ -795,6 +840,7 @@ class Episode {
   std::unique_ptr<planning::MoveExecutor> executor_;
   Rng planner_rng_{0};
   std::unique_ptr<RobotBody> body_;
+  std::unique_ptr<BodyFollower> follower_;
   std::unique_ptr<PerceptionModel> perception_;
   RobotGaze robot_gaze_;
   std::string current_move_item_;
@@ -825,7 +871,12 @@ class Episode {
   std::vector<double> path_lengths_m_;
   std::vector<double> move_durations_s_;
   std::vector<double> placement_errors_mm_;
-  std::vector<double> sync_errors_mm_;
+  std::vector<double> clearances_mm_;
+  std::vector<double> sync_mean_mm_;
+  std::vector<double> sync_lag_ms_;
+  double sync_max_mm_ = 0.0;
+  int moves_stolen_ = 0;
+  bool move_unreported_ = false;
 };
 
 }  // namespace

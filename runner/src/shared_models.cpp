@@ -1,0 +1,82 @@
+// The default shared models and the robot body backed by the stage's MuJoCo Nao.
+
+#include <spdlog/spdlog.h>
+
+#include "freeplay/agents/params.hpp"
+#include "freeplay/runner/episode.hpp"
+#include "freeplay/stage/nao_controller.hpp"
+#include "freeplay/stage/stage.hpp"
+#include "freeplay/stage/stage_model.hpp"
+
+namespace freeplay::runner {
+
+namespace {
+
+/// The MuJoCo Nao of the stage as the episode's robot body: `nao_behaviours` pointing and gaze on each pose.
+class StageRobotBody final : public RobotBody {
+ public:
+  StageRobotBody(std::shared_ptr<const stage::StageModel> model, stage::StageMode mode)
+      : stage_(std::move(model), mode), nao_(stage_) {
+    nao_.go_to_posture(stage::NaoPosture::StandInit);
+    if (stage_.mode() == stage::StageMode::kinematic) stage_.update_kinematics();
+    const auto disc = nao_.arm_reach();
+    reach_ = {disc.centre, disc.radius};
+  }
+
+  ReachDisc reach() const override { return reach_; }
+
+  Vec2 follow_finger(const Vec2& p) override {
+    nao_.look_at(Eigen::Vector3d(p.x(), p.y(), 0.0));
+    const auto result = nao_.point_at(p);
+    if (stage_.mode() == stage::StageMode::dynamic) {
+      nao_.apply();
+      stage_.step(kDynamicStepsPerPose);
+      const auto tip = stage_.site_position(stage_.model().nao().fingertip_site);
+      return tip.head<2>();
+    }
+    return result.fingertip.head<2>();
+  }
+
+  void look_at(const Eigen::Vector3d& point) override { nao_.look_at(point); }
+
+  void point_at(const Vec2& p) override { nao_.point_at(p); }
+
+  void rest() override { nao_.go_to_posture(stage::NaoPosture::StandInit); }
+
+  Eigen::Vector3d child_face(const std::string& seat) const override {
+    const auto& avatar = stage_.model().avatar(seat == "yellow" ? stage::ChildRole::yellow : stage::ChildRole::purple);
+    if (avatar.eyes_site >= 0) return stage_.site_position(avatar.eyes_site);
+    // The purple child's face when the scene has no avatar there: across the table, at seated eye height.
+    return {0.3, -0.6, 0.25};
+  }
+
+ private:
+  static constexpr int kDynamicStepsPerPose = 50;  // 0.1 s of 2 ms physics steps per 10 Hz pose
+  stage::Stage stage_;
+  stage::NaoController nao_;
+  ReachDisc reach_;
+};
+
+}  // namespace
+
+SharedModels SharedModels::load_default() {
+  SharedModels m;
+  m.catalogue = std::make_shared<const sim::ItemCatalogue>(sim::ItemCatalogue::load_default());
+  m.child_params = std::make_shared<const agents::ChildModelParams>(agents::default_child_model_params());
+  stage::StageConfig config;
+  config.scene = stage::SceneKind::child_robot;
+  auto kinematic_model = stage::StageModel::create(config);
+  m.robot_body = [kinematic_model](const std::string& mode, double arm_reach) -> std::unique_ptr<RobotBody> {
+    if (std::abs(arm_reach - kinematic_model->config().arm_reach) > 1e-12) {
+      stage::StageConfig custom = kinematic_model->config();
+      custom.arm_reach = arm_reach;
+      return std::make_unique<StageRobotBody>(stage::StageModel::create(custom),
+                                              mode == "dynamic" ? stage::StageMode::dynamic : stage::StageMode::kinematic);
+    }
+    return std::make_unique<StageRobotBody>(kinematic_model, mode == "dynamic" ? stage::StageMode::dynamic
+                                                                              : stage::StageMode::kinematic);
+  };
+  return m;
+}
+
+}  // namespace freeplay::runner
