@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "freeplay/core/error.hpp"
 #include "freeplay/stage/pan_tilt.hpp"
@@ -161,12 +162,16 @@ PointingResult NaoController::solve_pointing(const Vector3d& target, const NaoJo
   const Eigen::Vector3d weights(1.0, 1.0, 0.3);  // the on-screen position matters more than the hover height
   constexpr double kDamping = 0.01;
   Vector3d fingertip = Vector3d::Zero();
+  double previous_error = std::numeric_limits<double>::infinity();
   for (int iteration = 0; iteration < 150; ++iteration) {
     mj_kinematics(m, scratch_);
     mj_comPos(m, scratch_);
     fingertip = Eigen::Map<const Vector3d>(scratch_->site_xpos + 3 * nao_.fingertip_site);
     const Vector3d error = (target - fingertip).cwiseProduct(weights);
     if (error.head<2>().norm() < 1e-4 && std::abs(error.z()) < 1e-3) break;
+    // Out of reach, the arm stretches towards the target and the error stops shrinking: stop there.
+    if (iteration >= 8 && previous_error - error.norm() < 1e-5) break;
+    previous_error = error.norm();
     mj_jacSite(m, scratch_, jacobian.data(), nullptr, nao_.fingertip_site);
     Eigen::Matrix<double, 5, 1> q, lo, hi, preferred;
     for (size_t c = 0; c < kRightArm.size(); ++c) {
