@@ -82,6 +82,7 @@ void run_command(const RunCommandOptions& o, bool suite_command) {
   std::vector<std::string> overrides = o.overrides;
   if (o.episodes) overrides.push_back(fmt::format("episodes={}", *o.episodes));
   if (o.seed) overrides.push_back(fmt::format("seed={}", *o.seed));
+  const auto shard = o.shard.empty() ? std::pair<int, int>{0, 1} : parse_shard(o.shard);
   const auto vocabulary = scenario_vocabulary();
   const bool is_suite = runner::is_suite_file(o.file);
   if (suite_command && !is_suite) {
@@ -90,7 +91,6 @@ void run_command(const RunCommandOptions& o, bool suite_command) {
   }
   const auto suite = is_suite ? runner::load_suite(o.file, overrides, vocabulary)
                               : runner::single_scenario_suite(o.file, overrides, vocabulary);
-  const auto shard = o.shard.empty() ? std::pair<int, int>{0, 1} : parse_shard(o.shard);
   RunCommandOptions effective = o;
   effective.overrides = overrides;
   const auto identity = run_identity(effective, suite, shard);

@@ -1,5 +1,6 @@
 // `freeplay`: the command-line front end of freeplay-sim.
 
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -41,6 +42,8 @@ void add_list_command(CLI::App& program) {
 
 int main(int argc, char** argv) {
   using namespace freeplay::cli;
+  // Logs go to stderr so that stdout carries only results (tables, JSON) that programs can parse.
+  spdlog::set_default_logger(spdlog::stderr_color_mt("freeplay"));
   CLI::App program{"freeplay — simulate, benchmark and record Free-play Sandbox sessions (sandtray, Nao, children)",
                    "freeplay"};
   program.set_version_flag("--version", std::string("freeplay ") + freeplay::program_version());

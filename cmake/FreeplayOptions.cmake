@@ -32,8 +32,11 @@ function(freeplay_add_test name)
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gmock GTest::gtest_main)
   target_compile_options(${name} PRIVATE ${FREEPLAY_WARNINGS})
-  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS "${ARG_LABELS}"
-                       ENVIRONMENT "FREEPLAY_ASSETS_DIR=${PROJECT_SOURCE_DIR}/assets")
+  set(properties ENVIRONMENT "FREEPLAY_ASSETS_DIR=${PROJECT_SOURCE_DIR}/assets")
+  if(ARG_LABELS)
+    list(APPEND properties LABELS "${ARG_LABELS}")
+  endif()
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES ${properties})
 endfunction()
 
 # freeplay_add_benchmark(NAME SOURCES ... DEPS ...): a Google Benchmark program in build/bench/.

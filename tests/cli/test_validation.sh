@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Every validation error path of the CLI: exit status 2 and a message naming file:line:column, key and allowed values.
+set -u
+freeplay=$1
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+fail=0
+expect() {  # expect STATUS PATTERN -- command...
+  local status=$1 pattern=$2; shift 3
+  local out; out=$("$@" 2>&1); local got=$?
+  if [ "$got" -ne "$status" ] || ! grep -qF -- "$pattern" <<<"$out"; then
+    echo "FAIL: $* → status $got (want $status), output:"; echo "$out" | head -5; echo "  (wanted: $pattern)"; fail=1
+  fi
+}
+printf 'name: x\ncondition: child-child\nplanner:\n  nmae: astar\n' > "$dir/unknown-key.yaml"
+printf 'name: x\ncondition: child-child\nepisodes: many\n' > "$dir/wrong-type.yaml"
+printf 'name: x\ncondition: child-child\nchildren:\n  purple: {age: 12}\n' > "$dir/range.yaml"
+printf 'name: x\ncondition: robot-robot\n' > "$dir/enum.yaml"
+printf 'name: [x\n' > "$dir/syntax.yaml"
+printf 'suite: s\nscenarios:\n  - scenario: missing.yaml\n' > "$dir/suite.yaml"
+printf 'name: ok\ncondition: child-child\n' > "$dir/ok.yaml"
+expect 2 "unknown-key.yaml:4:3: 'planner.nmae': unknown key 'nmae' (allowed: name, time_budget_s, finger_speed_mps)" -- "$freeplay" validate "$dir/unknown-key.yaml"
+expect 2 "wrong-type.yaml:3:11: 'episodes': expected an integer" -- "$freeplay" validate "$dir/wrong-type.yaml"
+expect 2 "'children.purple.age': 12 is out of range (allowed: an integer in [4, 8])" -- "$freeplay" validate "$dir/range.yaml"
+expect 2 "unknown value 'robot-robot' (allowed: one of child-child, child-robot)" -- "$freeplay" validate "$dir/enum.yaml"
+expect 2 "syntax.yaml:" -- "$freeplay" validate "$dir/syntax.yaml"
+expect 2 "does not exist" -- "$freeplay" validate "$dir/suite.yaml"
+expect 0 "ok      $dir/ok.yaml" -- "$freeplay" validate "$dir/ok.yaml"
+expect 2 "unknown value 'teleport'" -- "$freeplay" run "$dir/ok.yaml" --set planner.name=teleport --out "$dir/r1"
+expect 2 "'--set': 'oops' is not an assignment" -- "$freeplay" run "$dir/ok.yaml" --set oops --out "$dir/r2"
+expect 2 "not a suite" -- "$freeplay" suite "$dir/ok.yaml" --out "$dir/r3"
+expect 2 "shard" -- "$freeplay" suite "$dir/suite.yaml" --shard 3/2
+expect 2 "--jobs" -- "$freeplay" run "$dir/ok.yaml" --jobs 0
+[ -e "$dir/r1" ] && { echo "FAIL: a run folder was created for invalid input"; fail=1; }
+[ $fail -eq 0 ] && echo "1 passed, 0 failed" || echo "0 passed, 1 failed"
+exit $fail
