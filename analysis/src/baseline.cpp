@@ -112,7 +112,7 @@ std::shared_ptr<const Schema> baseline_schema() {
 
 Baseline parse_baseline(const YamlDocument& document) {
   ValidationErrors errors;
-  YAML::Node root = YAML::Clone(document.root);
+  YAML::Node root = document.root;  // a handle: validation fills in defaults, marks stay for messages
   if (!root.IsDefined() || root.IsNull()) {
     errors.add(InputError("the baseline file is empty", "variants", "a map with keys baseline, variants",
                           {document.file, 1, 1}));
