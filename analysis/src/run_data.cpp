@@ -40,6 +40,7 @@ RunData run_from_records(const std::vector<nlohmann::json>& records, const std::
     if (seed != record.end() && seed->is_number_unsigned()) e.seed = seed->get<std::uint64_t>();
     e.metrics = comparable_metrics(record);
     if (!run.has_variant(e.variant)) run.variants.push_back(e.variant);
+    if (run.episodes.empty()) run.program_version = record.value("program_version", std::string{});
     run.episodes.push_back(std::move(e));
   }
   return run;

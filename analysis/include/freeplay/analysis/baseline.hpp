@@ -103,7 +103,7 @@ struct CheckReport {
 /// metric is absent from the run — every such problem at once.
 CheckReport check_run(const RunData& run, const Baseline& baseline, int resamples = 2000, std::uint64_t seed = 1);
 
-/// A readable table of the gates, failures first marked "FAIL".
+/// A readable table of the gates in baseline order, each marked "ok" or "FAIL", with a count at the end.
 std::string check_table(const CheckReport& report);
 
 /// JUnit XML: one <testsuite> per variant, one <testcase> per gate, <failure> for failed gates.

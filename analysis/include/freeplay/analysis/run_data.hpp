@@ -22,6 +22,7 @@ struct EpisodeValues {
 /// The finished episodes of one run folder.
 struct RunData {
   std::string dir;                       ///< the folder, as given
+  std::string program_version;           ///< program version of the first episode ("" when not recorded)
   std::vector<std::string> variants;     ///< variant ids in order of first appearance
   std::vector<EpisodeValues> episodes;   ///< in the order of episodes.jsonl
 
