@@ -9,7 +9,7 @@ if ! command -v python3 > /dev/null; then
 fi
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
-cd "$WORK"
+cd "$WORK" || exit 1
 failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 # expect STATUS COMMAND…: runs the command (output in out.txt) and checks its exit status.
@@ -110,7 +110,7 @@ contains "merged 40 episodes (1 per-episode files) from 3 run folders"
 python3 -c 'import json; l=lambda p:[json.loads(x) for x in open(p)]; assert l("A/episodes.jsonl") == l("merged/episodes.jsonl")' \
   || fail "merged episodes differ from the whole run"
 [ -f merged/events/child-robot-social-0002.jsonl ] || fail "per-episode file not copied"
-[ -f merged/summary.csv ] && [ -f merged/summary.md ] || fail "summaries not written"
+if [ ! -f merged/summary.csv ] || [ ! -f merged/summary.md ]; then fail "summaries not written"; fi
 expect 2 "$FREEPLAY" merge shard-0 shard-1 --out merged2
 contains "are missing"
 [ ! -e merged2 ] || fail "a refused merge wrote its output"
