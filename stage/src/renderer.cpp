@@ -88,7 +88,6 @@ class EglContext final : public GlContext {
     auto create_context = symbol<PFNEGLCREATECONTEXTPROC>(library_, "eglCreateContext");
     make_current_ = symbol<PFNEGLMAKECURRENTPROC>(library_, "eglMakeCurrent");
     destroy_context_ = symbol<PFNEGLDESTROYCONTEXTPROC>(library_, "eglDestroyContext");
-    terminate_ = symbol<PFNEGLTERMINATEPROC>(library_, "eglTerminate");
     auto get_platform_display =
         reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(get_proc_("eglGetPlatformDisplayEXT"));
     auto query_devices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(get_proc_("eglQueryDevicesEXT"));
@@ -129,10 +128,10 @@ class EglContext final : public GlContext {
     if (context_ == EGL_NO_CONTEXT) throw std::runtime_error("EGL: eglCreateContext failed");
     make_current();
   }
+  // The display stays initialised: EGL displays are per process, shared by every renderer of this thread pool.
   ~EglContext() override {
     make_current_(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     destroy_context_(display_, context_);
-    terminate_(display_);
   }
   void make_current() override {
     if (!make_current_(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_)) {
@@ -146,7 +145,6 @@ class EglContext final : public GlContext {
   PFNEGLGETPROCADDRESSPROC get_proc_ = nullptr;
   PFNEGLMAKECURRENTPROC make_current_ = nullptr;
   PFNEGLDESTROYCONTEXTPROC destroy_context_ = nullptr;
-  PFNEGLTERMINATEPROC terminate_ = nullptr;
   EGLDisplay display_ = EGL_NO_DISPLAY;
   EGLContext context_ = EGL_NO_CONTEXT;
 };
