@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -213,6 +214,12 @@ Renderer::Renderer(std::shared_ptr<const StageModel> model, RendererOptions opti
     m->vis.quality.numslices = 14;
     m->vis.quality.numstacks = 8;
     m->vis.quality.numquads = 1;
+    const int floor = mj_name2id(m, mjOBJ_MATERIAL, "floor");  // plain floor: texturing a large area is costly
+    if (floor >= 0) {
+      m->mat_texid[floor] = -1;
+      const float average_checker[4] = {0.69F, 0.63F, 0.55F, 1.0F};
+      std::copy(average_checker, average_checker + 4, m->mat_rgba + 4 * floor);
+    }
   }
   if (options.backend == GlBackend::osmesa) {
     impl_->gl = std::make_unique<OsMesaContext>(options.max_width, options.max_height);
