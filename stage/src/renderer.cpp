@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -88,7 +89,6 @@ class EglContext final : public GlContext {
     auto create_context = symbol<PFNEGLCREATECONTEXTPROC>(library_, "eglCreateContext");
     make_current_ = symbol<PFNEGLMAKECURRENTPROC>(library_, "eglMakeCurrent");
     destroy_context_ = symbol<PFNEGLDESTROYCONTEXTPROC>(library_, "eglDestroyContext");
-    terminate_ = symbol<PFNEGLTERMINATEPROC>(library_, "eglTerminate");
     auto get_platform_display =
         reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(get_proc_("eglGetPlatformDisplayEXT"));
     auto query_devices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(get_proc_("eglQueryDevicesEXT"));
@@ -129,10 +129,10 @@ class EglContext final : public GlContext {
     if (context_ == EGL_NO_CONTEXT) throw std::runtime_error("EGL: eglCreateContext failed");
     make_current();
   }
+  // The display stays initialised: EGL displays are per process, shared by every renderer of this thread pool.
   ~EglContext() override {
     make_current_(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     destroy_context_(display_, context_);
-    terminate_(display_);
   }
   void make_current() override {
     if (!make_current_(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_)) {
@@ -146,7 +146,6 @@ class EglContext final : public GlContext {
   PFNEGLGETPROCADDRESSPROC get_proc_ = nullptr;
   PFNEGLMAKECURRENTPROC make_current_ = nullptr;
   PFNEGLDESTROYCONTEXTPROC destroy_context_ = nullptr;
-  PFNEGLTERMINATEPROC terminate_ = nullptr;
   EGLDisplay display_ = EGL_NO_DISPLAY;
   EGLContext context_ = EGL_NO_CONTEXT;
 };
@@ -215,6 +214,12 @@ Renderer::Renderer(std::shared_ptr<const StageModel> model, RendererOptions opti
     m->vis.quality.numslices = 14;
     m->vis.quality.numstacks = 8;
     m->vis.quality.numquads = 1;
+    const int floor = mj_name2id(m, mjOBJ_MATERIAL, "floor");  // plain floor: texturing a large area is costly
+    if (floor >= 0) {
+      m->mat_texid[floor] = -1;
+      const float average_checker[4] = {0.69F, 0.63F, 0.55F, 1.0F};
+      std::copy(average_checker, average_checker + 4, m->mat_rgba + 4 * floor);
+    }
   }
   if (options.backend == GlBackend::osmesa) {
     impl_->gl = std::make_unique<OsMesaContext>(options.max_width, options.max_height);
