@@ -28,23 +28,27 @@ std::string item_names(const std::vector<Obstacle>& footprints) {
   return names;
 }
 
-// The finger stream as a function of time: linear between poses, held before the first and after the last.
-Vec2 finger_at(const std::vector<TimedPose>& finger, double t) {
-  if (t <= finger.front().t) return finger.front().position;
-  if (t >= finger.back().t) return finger.back().position;
-  const auto after = std::upper_bound(finger.begin(), finger.end(), t,
-                                      [](double time, const TimedPose& pose) { return time < pose.t; });
-  const auto before = std::prev(after);
-  const double span = after->t - before->t;
-  const double u = span > 0.0 ? (t - before->t) / span : 1.0;
-  return before->position + u * (after->position - before->position);
-}
-
+// Mean distance between the fingertip stream and the finger stream delayed by `lag` (the finger stream is linear
+// between poses and held before the first and after the last); one forward walk, as the query times increase.
 double mean_error_at_lag(const std::vector<TimedPose>& finger, const std::vector<FollowReport>& fingertip,
                          double lag) {
   double sum = 0.0;
+  std::size_t segment = 0;  // finger[segment].t <= query < finger[segment + 1].t
   for (std::size_t i = 0; i < finger.size(); ++i) {
-    sum += (fingertip[i].fingertip_on_screen - finger_at(finger, finger[i].t - lag)).norm();
+    const double t = finger[i].t - lag;
+    Vec2 p;
+    if (t <= finger.front().t) {
+      p = finger.front().position;
+    } else if (t >= finger.back().t) {
+      p = finger.back().position;
+    } else {
+      while (finger[segment + 1].t <= t) ++segment;
+      const TimedPose& a = finger[segment];
+      const TimedPose& b = finger[segment + 1];
+      const double span = b.t - a.t;
+      p = a.position + (span > 0.0 ? (t - a.t) / span : 1.0) * (b.position - a.position);
+    }
+    sum += (fingertip[i].fingertip_on_screen - p).norm();
   }
   return sum / static_cast<double>(finger.size());
 }
