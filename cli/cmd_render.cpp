@@ -12,6 +12,9 @@
 #include "command_registry.hpp"
 #include "freeplay/core/atomic_file.hpp"
 #include "freeplay/core/error.hpp"
+#include "freeplay/core/rng.hpp"
+#include "freeplay/sim/item_catalogue.hpp"
+#include "freeplay/sim/sandtray.hpp"
 #include "freeplay/stage/renderer.hpp"
 #include "freeplay/stage/stage.hpp"
 
@@ -31,6 +34,8 @@ struct RenderArgs {
   std::string gl;
   std::string out;
   bool list = false;
+  std::uint64_t seed = 1;
+  bool stash = false;
 };
 
 nlohmann::json camera_json(const Stage& stage, const CameraSpec& spec) {
@@ -93,7 +98,13 @@ void run_render(const RenderArgs& args) {
   auto model = StageModel::create(config);
   model->camera(args.camera);  // validates the name before any GL work
   Stage stage(model);
-  stage.set_screen_image(demo_screen_image());
+  // The live game screen: free play with the items spread over the map (or left in the stash), from --seed.
+  sim::Sandtray tray(std::make_shared<const sim::ItemCatalogue>(sim::ItemCatalogue::load_default()), {},
+                     Rng(SeedSequence(args.seed).seed_for("sandtray")));
+  tray.signal(sim::Signal::StartFreeplay);
+  if (!args.stash) tray.signal(sim::Signal::ShuffleItems);
+  tray.step(2.0);
+  stage.set_screen_image(tray.render_screen(config.screen_texture_width));
   stage.update_kinematics();
   Renderer renderer(model, options);
   RenderRequest request;
@@ -130,6 +141,8 @@ const RegisterCommand register_render(60, [](CLI::App& program) {
   cmd->add_option("--age", args->age, "Children's age in years (4–8)")->capture_default_str();
   cmd->add_option("--gl", args->gl, "osmesa or egl (default: $MUJOCO_GL, else osmesa)");
   cmd->add_option("--out", args->out, "Output PNG (written atomically)");
+  cmd->add_option("--seed", args->seed, "Seed of the sandtray game shown on the screen")->capture_default_str();
+  cmd->add_flag("--stash", args->stash, "Leave the items in the stash (as at the start of free play)");
   cmd->add_flag("--list-cameras", args->list, "List the cameras with resolution, intrinsics and sandtray pose");
   cmd->callback([args] { run_render(*args); });
 });
