@@ -59,7 +59,9 @@ std::shared_ptr<const Schema> scenario_schema(const ScenarioVocabulary& vocabula
   });
   const auto planner = S::map({
       with_default("name", S::enumeration(vocabulary.planners), "astar"),
-      with_default("time_budget_s", S::number(0.001, 10.0), "0.05"),
+      with_default("time_budget_s", S::number(0.001, 60.0), "1.0",
+                   "wall-clock budget; only anytime planners (rrtstar, bitstar) use it up: keep it large so that "
+                   "deterministic planners never hit it on a slow machine"),
       with_default("finger_speed_mps", S::number(0.005, 1.0), "0.05", "5 mm per 0.1 s in the real system"),
   });
   const auto perception = S::map({

@@ -63,7 +63,7 @@ struct Scenario {
   std::string robot_mode = "kinematic";  ///< "kinematic" | "dynamic"
   double arm_reach_m = 0.5;              ///< reach used for the arm-reach disc (real sessions: 0.5)
   std::string planner = "astar";         ///< motion planner
-  double planner_budget_s = 0.05;        ///< planning time budget (anytime planners)
+  double planner_budget_s = 1.0;         ///< wall-clock planning budget (only anytime planners use it up)
   double finger_speed_mps = 0.05;        ///< robot finger speed (5 mm per 0.1 s)
   double face_detection_rate = 0.98;     ///< perception: fraction of frames with the face found
   double perception_latency_s = 0.1;     ///< perception latency
