@@ -68,8 +68,8 @@ TEST(Episode, ChildRobotEpisodeFollowsTheProtocolAndRecordsMetrics) {
 TEST(Episode, TheSocialPolicyNeverGrabsAnItemAChildHolds) {
   const std::atomic<bool> stop{false};
   int robot_grabs = 0;
-  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
-    const auto r = run_episode(scenario("child-robot", "social", 600), seed, models(), stop);
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    const auto r = run_episode(scenario("child-robot", "social", 400), seed, models(), stop);
     for (const auto& e : r.events.events()) {
       if (e.type != "item_grabbed" || e.data.value("holder", "") != "robot") continue;
       ++robot_grabs;
