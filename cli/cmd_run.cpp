@@ -69,8 +69,11 @@ std::optional<std::filesystem::path> unfinished_run(const nlohmann::json& identi
     const auto meta = entry.path() / "run.json";
     if (!std::filesystem::exists(meta)) continue;
     try {
-      const auto j = nlohmann::json::parse(read_file(meta));
-      if (j.value("complete", true) || j["identity"] != identity) continue;
+      auto j = nlohmann::json::parse(read_file(meta));
+      if (j.value("complete", true)) continue;
+      j.erase("complete");
+      j.erase("title");
+      if (j != identity) continue;
       if (!best || entry.path().filename() > best->filename()) best = entry.path();
     } catch (const std::exception&) {
     }
@@ -105,7 +108,15 @@ void run_command(const RunCommandOptions& o, bool suite_command) {
     }
   }
   std::filesystem::create_directories(out);
-  write_file_atomically(out / "run.json", nlohmann::json{{"identity", identity}, {"complete", false}}.dump(2) + "\n");
+  const auto title = fmt::format("{} — {}", suite.name, suite.description);
+  // run.json: what was run (resume and `freeplay merge` read it), the summary title, and whether it finished.
+  auto write_run_json = [&](bool complete) {
+    auto meta = identity;
+    meta["title"] = title;
+    meta["complete"] = complete;
+    write_file_atomically(out / "run.json", meta.dump(2) + "\n");
+  };
+  write_run_json(false);
 
   const auto models = runner::SharedModels::load_default();
   runner::RunOptions options;
@@ -114,7 +125,7 @@ void run_command(const RunCommandOptions& o, bool suite_command) {
   options.progress = !o.quiet;
   options.shard_index = shard.first;
   options.shard_count = shard.second;
-  options.title = fmt::format("{} — {}", suite.name, suite.description);
+  options.title = title;
   if (!o.quiet) {
     spdlog::info("{}: {} variant(s), {} episode(s) in this shard, {} worker(s) → {}", suite.name,
                  suite.variants.size(), suite.total_episodes() / shard.second, options.jobs, out.string());
@@ -126,7 +137,7 @@ void run_command(const RunCommandOptions& o, bool suite_command) {
   std::signal(SIGINT, previous_handler);
 
   const bool complete = report.skipped + report.finished >= report.total;
-  write_file_atomically(out / "run.json", nlohmann::json{{"identity", identity}, {"complete", complete}}.dump(2) + "\n");
+  write_run_json(complete);
   if (!o.quiet && !o.no_summary) std::cout << read_file(out / "summary.md");
   if (!complete) {
     std::cerr << fmt::format("interrupted: {} of {} episodes finished and kept in {}; run the same command again "

@@ -614,7 +614,6 @@ class Episode {
                         {"reason", outcome.reason()},
                         {"target_in_reach", outcome.target_in_reach},
                         {"poses", outcome.poses_sent}};
-    planning_times_s_.push_back(outcome.plan.metrics.planning_time_s);
     if (outcome.plan.ok) {
       path_lengths_m_.push_back(outcome.plan.metrics.path_length_m);
       clearances_mm_.push_back(outcome.plan.metrics.min_clearance_m * 1000.0);
@@ -808,7 +807,6 @@ class Episode {
       children[c.seat_name] = profile_json(c.agent->profile());
       children[c.seat_name]["quit_time_s"] = c.agent->quit_time();
     }
-    nlohmann::json timing{{"planning_time_s_mean", mean_or_nan(planning_times_s_)}};
     return {{"duration_s", duration},
             {"ended_by", ended_by},
             {"children", children},
@@ -818,7 +816,6 @@ class Episode {
             {"event_log_hash", fmt::format("{:016x}", log_.hash())},
             {"gl_renderer", nullptr},
             {"libraries", library_versions()},
-            {"timing", timing},
             {"metrics", metrics}};
   }
 
@@ -867,7 +864,6 @@ class Episode {
   int moves_succeeded_ = 0;
   int moves_failed_ = 0;
   int moves_cancelled_ = 0;
-  std::vector<double> planning_times_s_;
   std::vector<double> path_lengths_m_;
   std::vector<double> move_durations_s_;
   std::vector<double> placement_errors_mm_;
