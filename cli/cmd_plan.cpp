@@ -17,6 +17,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "command_registry.hpp"
+#include "freeplay/runner/sandtray_world.hpp"
 #include "freeplay/core/atomic_file.hpp"
 #include "freeplay/core/error.hpp"
 #include "freeplay/core/rng.hpp"
@@ -58,31 +59,6 @@ Vec2 parse_point(const std::string& text, const std::string& key, const std::str
     throw InputError(fmt::format("'{}' is not a point", text), key, fmt::format("X,Y with finite numbers ({})", unit));
   }
   return {x, y};
-}
-
-// The tray as the real planner sees it: TF centres, `/footprints` polygons moved by TF, children's fingers.
-planning::MoveWorld sandtray_world(const sim::Sandtray& tray) {
-  planning::MoveWorld world;
-  world.item_centre = [&tray](const std::string& name) -> std::optional<Vec2> {
-    if (tray.catalogue().find(name) == nullptr) return std::nullopt;
-    return tray.item(name).pose.position();
-  };
-  world.footprints = [&tray] {
-    const auto items = tray.items();
-    std::vector<planning::Obstacle> out;
-    for (const auto& [name, polygon] : tray.published_footprints()) {
-      for (const auto& item : items) {
-        if (item.name == name) out.push_back({name, transformed(polygon, item.pose)});
-      }
-    }
-    return out;
-  };
-  world.held_by_child = [&tray](const std::string& name) {
-    const auto holders = tray.item(name).holders;
-    return std::any_of(holders.begin(), holders.end(),
-                       [](const sim::Holder& h) { return h.kind == sim::Holder::Kind::Finger; });
-  };
-  return world;
 }
 
 // Items `n` of a random layout of every catalogue item that include `item` (the first n − 1 others in placement
@@ -194,7 +170,7 @@ void run_plan(const PlanOptions& options) {
   Rng layout_rng = seeds.stream("layout");
   const planning::Layout layout = layout_with(*catalogue, options.item, options.items, layout_rng);
   for (const auto& placed : layout.items) tray.place_item(placed.name, placed.pose);
-  const planning::MoveWorld world = sandtray_world(tray);
+  const planning::MoveWorld world = runner::sandtray_move_world(tray);
   const Vec2 start = *world.item_centre(options.item);
   const std::vector<planning::Obstacle> footprints_before = world.footprints();
 

@@ -127,8 +127,10 @@ void run_command(const RunCommandOptions& o, bool suite_command) {
   options.shard_count = shard.second;
   options.title = title;
   if (!o.quiet) {
-    spdlog::info("{}: {} variant(s), {} episode(s) in this shard, {} worker(s) → {}", suite.name,
-                 suite.variants.size(), suite.total_episodes() / shard.second, options.jobs, out.string());
+    spdlog::info("{}: {} variant(s), {} episode(s){}, {} worker(s) → {}", suite.name, suite.variants.size(),
+                 suite.total_episodes(),
+                 shard.second > 1 ? fmt::format(" in the suite (shard {}/{})", shard.first + 1, shard.second) : "",
+                 options.jobs, out.string());
   }
 
   g_stop.store(false);

@@ -9,6 +9,7 @@
 
 #include "freeplay/planning/layout.hpp"
 #include "freeplay/planning/move_executor.hpp"
+#include "freeplay/runner/sandtray_world.hpp"
 #include "freeplay/sim/item_catalogue.hpp"
 #include "freeplay/sim/sandtray.hpp"
 
@@ -89,15 +90,7 @@ void BM_WholeMoveInPhysics(benchmark::State& state) {
   Rng layout_rng(1);
   const Layout layout = random_layout(shapes, 10, layout_rng);
   const auto planner = std::shared_ptr<const MotionPlanner>(make_planner("astar"));
-  MoveWorld world;
-  world.item_centre = [&tray](const std::string& name) -> std::optional<Vec2> {
-    return tray.item(name).pose.position();
-  };
-  world.footprints = [&tray] {
-    std::vector<Obstacle> out;
-    for (const auto& spec : tray.catalogue().items()) out.push_back({spec.name, tray.footprint(spec.name)});
-    return out;
-  };
+  const MoveWorld world = runner::sandtray_move_world(tray);
   MoveOutputs outputs;
   outputs.finger = [&tray](const TimedPose& pose) { tray.robot_pose(pose.position); };
   Rng rng(2);

@@ -19,6 +19,7 @@
 #include "freeplay/policies/play_policy.hpp"
 #include "freeplay/runner/perception_model.hpp"
 #include "freeplay/runner/run_folder.hpp"
+#include "freeplay/runner/sandtray_world.hpp"
 #include "freeplay/runner/versions.hpp"
 #include "freeplay/sim/sandtray.hpp"
 #include "freeplay/sim/zones.hpp"
@@ -524,29 +525,7 @@ class Episode {
     robot_gaze_ = {RobotGaze::Kind::Item, move.item};
   }
 
-  planning::MoveWorld move_world() {
-    planning::MoveWorld world;
-    world.item_centre = [this](const std::string& name) -> std::optional<Vec2> {
-      if (models_.catalogue->find(name) == nullptr) return std::nullopt;
-      return tray_.item(name).pose.position();
-    };
-    world.footprints = [this] {
-      std::vector<planning::Obstacle> obstacles;
-      for (const auto& item : tray_.items()) {
-        if (item.visible && !sim::in_stash(item.pose.position())) {
-          obstacles.push_back({item.name, tray_.footprint(item.name)});
-        }
-      }
-      return obstacles;
-    };
-    world.held_by_child = [this](const std::string& name) {
-      for (const auto& h : tray_.item(name).holders) {
-        if (h.kind == sim::Holder::Kind::Finger) return true;
-      }
-      return false;
-    };
-    return world;
-  }
+  planning::MoveWorld move_world() const { return sandtray_move_world(tray_); }
 
   void handle(const policies::Action& action, double t) {
     if (const auto* move = std::get_if<policies::MoveItem>(&action)) {
@@ -583,7 +562,7 @@ class Episode {
     for (const auto& action : policy_->decide(observe(t))) handle(action, t);
     if (move_unreported_) {  // a move that ended in start() (refused or unplannable)
       move_unreported_ = false;
-      finish_move(executor_->status(), t);
+      finish_move(executor_->status());
     }
     if (executor_->status() == planning::MoveStatus::Running) {
       planning::MoveOutputs outputs;
@@ -593,7 +572,7 @@ class Episode {
       };
       outputs.arm = follower_.get();
       executor_->step(kTickS, move_world(), outputs);
-      if (executor_->status() != planning::MoveStatus::Running) finish_move(executor_->status(), t);
+      if (executor_->status() != planning::MoveStatus::Running) finish_move(executor_->status());
     }
     if (speech_pending_result_ && t >= robot_speaking_until_) {
       speech_pending_result_ = false;
@@ -605,7 +584,7 @@ class Episode {
     }
   }
 
-  void finish_move(planning::MoveStatus status, double t) {
+  void finish_move(planning::MoveStatus status) {
     const auto& outcome = executor_->current();
     policies::ActionResult result;
     result.item = current_move_item_;
@@ -644,7 +623,6 @@ class Episode {
     log_.emit({now(), "robot", "move_result", std::move(data)});
     robot_gaze_ = {RobotGaze::Kind::Tray, ""};
     policy_->on_result(result);
-    (void)t;
   }
 
   // ---- events and metrics ----------------------------------------------------------------------------------

@@ -8,6 +8,7 @@
 
 #include "freeplay/planning/layout.hpp"
 #include "freeplay/planning/move_executor.hpp"
+#include "freeplay/runner/sandtray_world.hpp"
 #include "freeplay/sim/item_catalogue.hpp"
 #include "freeplay/sim/sandtray.hpp"
 
@@ -40,31 +41,8 @@ inline void place_layout(sim::Sandtray& tray, const Layout& layout) {
   for (const auto& item : layout.items) tray.place_item(item.name, item.pose);
 }
 
-/// The tray as the real planner sees it: TF item centres, `/footprints` polygons moved by TF, fingers on items.
-inline MoveWorld sandtray_world(const sim::Sandtray& tray) {
-  MoveWorld world;
-  world.item_centre = [&tray](const std::string& name) -> std::optional<Vec2> {
-    if (tray.catalogue().find(name) == nullptr) return std::nullopt;
-    return tray.item(name).pose.position();
-  };
-  world.footprints = [&tray] {
-    const auto items = tray.items();
-    std::vector<Obstacle> out;
-    for (const auto& [name, polygon] : tray.published_footprints()) {
-      for (const auto& item : items) {
-        if (item.name == name) out.push_back({name, transformed(polygon, item.pose)});
-      }
-    }
-    return out;
-  };
-  world.held_by_child = [&tray](const std::string& name) {
-    for (const auto& holder : tray.item(name).holders) {
-      if (holder.kind == sim::Holder::Kind::Finger) return true;
-    }
-    return false;
-  };
-  return world;
-}
+/// The tray as the real planner sees it (the one adapter the episode loop and `freeplay plan` use too).
+inline MoveWorld sandtray_world(const sim::Sandtray& tray) { return runner::sandtray_move_world(tray); }
 
 /// What happened during one move run in the physics.
 struct PhysicsRun {
