@@ -8,6 +8,8 @@
 #include <cmath>
 #include <deque>
 #include <map>
+#include <optional>
+#include <span>
 
 #include "freeplay/agents/child_agent.hpp"
 #include "freeplay/agents/labels.hpp"
@@ -33,6 +35,12 @@ constexpr double kMinMoveM = 0.02;              // displacement that counts as a
 constexpr double kTakenWindowS = 30.0;          // "took an item from" window after the other's last move
 constexpr double kRobotArticulationSyllablesPerS = 3.5;  // NAO text-to-speech at its default speed
 constexpr double kRobotRestAfterS = 30.0;       // nao_behaviours: arm to rest after 30 s without poses
+// Approximate faces for gaze targets (sandtray frame, m): seated children on the long sides, the Nao's head
+// above the yellow side, the experimenter standing behind the purple side.
+const Eigen::Vector3d kPurpleFace{0.30, -0.60, 0.25};
+const Eigen::Vector3d kYellowFace{0.30, 0.265, 0.25};
+const Eigen::Vector3d kRobotHead{0.30, 0.20, 0.35};
+const Eigen::Vector3d kExperimenter{-0.60, -0.90, 1.20};
 constexpr const char* kRobotHello = "Hello, I'm Nao. Today I'll be playing with you. Exciting!";
 
 int syllables_of(const std::string& text) {
@@ -187,20 +195,26 @@ class Episode {
     }
   }
 
-  EpisodeResult run(const std::atomic<bool>& stop) {
+  EpisodeResult run(const std::atomic<bool>& stop, EpisodeObservers* observers = nullptr,
+                    const EpisodeInfo* info = nullptr) {
     EpisodeResult result;
+    observers_ = observers != nullptr && !observers->empty() ? observers : nullptr;
+    if (observers_ != nullptr) {
+      for (auto& o : *observers_) o->begin(*info);
+    }
     const auto wall_start = std::chrono::steady_clock::now();
     // Greetings: blank screen; in child-robot sessions the robot stands up and says hello.
     stage_event("greeting");
     if (child_robot_) robot_say(kRobotHello, "", 0.0, /*count_as_action=*/false);
-    tray_.step(scenario_.protocol.greeting_s);
+    if (!idle_stage(scenario_.protocol.greeting_s, stop)) return aborted(result);
     // Tutorial: tutorial background, only the boy and the girl.
     tray_.signal(sim::Signal::StartTutorial);
     stage_event("tutorial");
-    tray_.step(scenario_.protocol.tutorial_s);
+    if (!idle_stage(scenario_.protocol.tutorial_s, stop)) return aborted(result);
     // Free play.
     tray_.signal(sim::Signal::StartFreeplay);
     freeplay_start_ = tray_.time();
+    stage_ = "freeplay";
     stage_event("freeplay");
     drain_tray_events();
     const double cap = scenario_.protocol.freeplay_cap_s;
@@ -209,15 +223,13 @@ class Episode {
     for (long tick = 0;; ++tick) {
       t = static_cast<double>(tick) * kTickS;
       if (t >= cap) break;
-      if ((tick & 63) == 0 && stop.load(std::memory_order_relaxed)) {
-        result.aborted = true;
-        return result;
-      }
+      if (((tick & 63) == 0 || observers_ != nullptr) && stop.load(std::memory_order_relaxed)) return aborted(result);
       step_children(t);
       if (child_robot_) step_robot(t);
       tray_.step(kTickS);
       drain_tray_events();
       update_gaze_metrics(t);
+      if (observers_ != nullptr) notify();
       if (ended()) {
         t += kTickS;
         ended_by = "quit";
@@ -230,7 +242,7 @@ class Episode {
     // Debriefing.
     tray_.signal(sim::Signal::BlankInterface);
     stage_event("debriefing");
-    tray_.step(scenario_.protocol.debriefing_s);
+    if (!idle_stage(scenario_.protocol.debriefing_s, stop)) return aborted(result);
     drain_tray_events();
 
     result.duration_s = duration;
@@ -240,6 +252,9 @@ class Episode {
     result.record = record(duration, ended_by, result.annotations);
     result.record["simulated_s"] = result.simulated_s;
     result.record["wall_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    if (observers_ != nullptr) {
+      for (auto& o : *observers_) o->end(result);
+    }
     result.events = std::move(log_);
     return result;
   }
@@ -268,7 +283,105 @@ class Episode {
     children_.push_back(std::move(c));
   }
 
-  void stage_event(const std::string& name) { log_.emit({tray_.time(), "protocol", "stage", {{"stage", name}}}); }
+  void stage_event(const std::string& name) {
+    stage_ = name;
+    log_.emit({tray_.time(), "protocol", "stage", {{"stage", name}}});
+  }
+
+  EpisodeResult& aborted(EpisodeResult& result) {
+    if (observers_ != nullptr) {
+      for (auto& o : *observers_) o->abort();
+    }
+    result.aborted = true;
+    return result;
+  }
+
+  // A stage without children's play (greetings, tutorial, debriefing): one step without observers; with them,
+  // 10 Hz ticks (the sandtray clock is integral, so both give the same state). False when stopped.
+  bool idle_stage(double seconds, const std::atomic<bool>& stop) {
+    if (observers_ == nullptr) {
+      tray_.step(seconds);
+      drain_tray_events();
+      return true;
+    }
+    const double end = tray_.time() + seconds;
+    while (tray_.time() + kTickS <= end + 1e-9) {
+      if (stop.load(std::memory_order_relaxed)) return false;
+      tray_.step(kTickS);
+      drain_tray_events();
+      notify();
+    }
+    if (end - tray_.time() > 1e-9) {
+      tray_.step(end - tray_.time());
+      drain_tray_events();
+      notify();
+    }
+    return true;
+  }
+
+  Eigen::Vector3d face_of(const std::string& seat) const {
+    if (child_robot_ && seat == "purple") return body_->child_face(seat);
+    return seat == "yellow" ? kYellowFace : kPurpleFace;
+  }
+
+  Eigen::Vector3d gaze_point_of(const ChildSlot& c) const {
+    const auto& g = c.last.gaze;
+    switch (g.kind) {
+      case agents::GazeKind::Tray:
+      case agents::GazeKind::Item: return {g.point.x(), g.point.y(), 0.0};
+      case agents::GazeKind::PartnerFace: return child_robot_ ? kRobotHead : face_of(c.seat_name == "purple" ? "yellow" : "purple");
+      case agents::GazeKind::Robot: return kRobotHead;
+      case agents::GazeKind::Experimenter: return kExperimenter;
+      case agents::GazeKind::Away: break;
+    }
+    const auto face = face_of(c.seat_name);
+    return {face.x() + 1.0, face.y(), face.z() + 0.3};  // looking aside, out of the table
+  }
+
+  // Hands every observer the current tick.
+  void notify() {
+    const double t_abs = tray_.time();
+    const bool started = stage_ == "freeplay" || stage_ == "debriefing";
+    const double freeplay_t =
+        t_abs - (started ? freeplay_start_ : scenario_.protocol.greeting_s + scenario_.protocol.tutorial_s);
+    snapshot_children_.resize(children_.size());
+    const auto touches = tray_.touches();
+    for (std::size_t i = 0; i < children_.size(); ++i) {
+      const auto& c = children_[i];
+      auto& s = snapshot_children_[i];
+      s.seat = c.seat_name;
+      s.age_years = c.agent->profile().age_years;
+      s.gender = std::string(agents::gender_name(c.agent->profile().gender));
+      s.gaze = std::string(gaze_name(c.last.gaze.kind));
+      s.gaze_point = gaze_point_of(c);
+      s.touches.clear();
+      for (const auto& touch : touches) {
+        if (c.owns_finger(touch.finger)) s.touches.emplace_back(touch.finger, touch.position);
+      }
+      s.speaking = stage_ == "freeplay" && c.speaking(freeplay_t);
+    }
+    EpisodeSnapshot snapshot;
+    snapshot.t = t_abs;
+    snapshot.freeplay_t = freeplay_t;
+    snapshot.stage = stage_;
+    snapshot.tray = &tray_;
+    snapshot.children = snapshot_children_;
+    if (child_robot_) {
+      robot_snapshot_.joint_names.clear();
+      robot_snapshot_.positions.clear();
+      robot_snapshot_.velocities.clear();
+      robot_snapshot_.efforts.clear();
+      body_->joint_state(robot_snapshot_);
+      robot_snapshot_.finger = executor_->status() == planning::MoveStatus::Running ? robot_finger_ : std::nullopt;
+      robot_snapshot_.gaze_point = robot_gaze_point_;
+      robot_snapshot_.speaking = t_abs < robot_speaking_until_abs_;
+      snapshot.robot = &robot_snapshot_;
+    }
+    const auto& events = log_.events();
+    snapshot.new_events = std::span<const Event>(events.data() + notified_events_, events.size() - notified_events_);
+    notified_events_ = events.size();
+    for (auto& o : *observers_) o->observe(snapshot);
+  }
 
   double now() const { return tray_.time(); }
 
@@ -495,6 +608,7 @@ class Episode {
     const double duration = syllables_of(text) / kRobotArticulationSyllablesPerS;
     robot_speech_started_ = t;
     robot_speaking_until_ = t + duration;
+    robot_speaking_until_abs_ = now() + duration;
     speech_pending_result_ = count_as_action;
     log_.emit({now(), "robot", "say", {{"text", text}, {"to", to}, {"duration_s", duration}}});
     if (count_as_action) count_action("say", t);
@@ -534,7 +648,8 @@ class Episode {
       count_action("look", t);
       if (look->child) {
         robot_gaze_ = {RobotGaze::Kind::Child, *look->child};
-        body_->look_at(body_->child_face(*look->child));
+        robot_gaze_point_ = body_->child_face(*look->child);
+        body_->look_at(robot_gaze_point_);
         log_.emit({now(), "robot", "look_at", {{"child", *look->child}}});
       } else if (look->point) {
         robot_gaze_ = {RobotGaze::Kind::Tray, ""};
@@ -542,6 +657,7 @@ class Episode {
           if ((item.pose.position() - look->point->head<2>()).norm() < 0.03) robot_gaze_ = {RobotGaze::Kind::Item, item.name};
         }
         body_->look_at(*look->point);
+        robot_gaze_point_ = *look->point;
         log_.emit({now(), "robot", "look_at", {{"x", look->point->x()}, {"y", look->point->y()}, {"z", look->point->z()}}});
       }
     } else if (const auto* point = std::get_if<policies::PointAt>(&action)) {
@@ -568,6 +684,8 @@ class Episode {
       planning::MoveOutputs outputs;
       outputs.finger = [&](const planning::TimedPose& pose) {
         tray_.robot_pose(pose.position);
+        robot_finger_ = pose.position;
+        robot_gaze_point_ = {pose.position.x(), pose.position.y(), 0.0};
         last_pose_t_ = t;
       };
       outputs.arm = follower_.get();
@@ -851,6 +969,15 @@ class Episode {
   double sync_max_mm_ = 0.0;
   int moves_stolen_ = 0;
   bool move_unreported_ = false;
+  // Observers.
+  EpisodeObservers* observers_ = nullptr;
+  std::string stage_ = "greeting";
+  std::size_t notified_events_ = 0;
+  std::vector<ChildSnapshot> snapshot_children_;
+  RobotSnapshot robot_snapshot_;
+  std::optional<Vec2> robot_finger_;
+  Eigen::Vector3d robot_gaze_point_{sim::kScreenWidthM / 2, -sim::kScreenHeightM / 2, 0.0};
+  double robot_speaking_until_abs_ = -1.0;
 };
 
 }  // namespace
@@ -861,12 +988,22 @@ EpisodeResult run_episode(const Scenario& scenario, std::uint64_t seed, const Sh
   return episode.run(stop);
 }
 
-EpisodeFunction episode_function(const SharedModels& models) {
-  return [&models](const EpisodeTask& task, const std::atomic<bool>& stop) {
-    auto result = run_episode(task.variant->scenario, task.seed, models, stop);
+EpisodeResult run_episode(const Scenario& scenario, std::uint64_t seed, const SharedModels& models,
+                          const std::atomic<bool>& stop, EpisodeObservers& observers, const EpisodeInfo& info) {
+  Episode episode(scenario, seed, models);
+  return episode.run(stop, &observers, &info);
+}
+
+EpisodeFunction episode_function(const SharedModels& models, ObserverFactory observers, std::filesystem::path run_dir) {
+  return [&models, observers = std::move(observers), run_dir = std::move(run_dir)](const EpisodeTask& task,
+                                                                                   const std::atomic<bool>& stop) {
+    const auto id = RunFolder::episode_file_id(task.variant->id, task.index);
+    EpisodeObservers attached = observers ? observers(task.variant->scenario, run_dir) : EpisodeObservers{};
+    const EpisodeInfo info{&task.variant->scenario, id, task.seed};
+    auto result = attached.empty() ? run_episode(task.variant->scenario, task.seed, models, stop)
+                                   : run_episode(task.variant->scenario, task.seed, models, stop, attached, info);
     EpisodeOutput out;
     if (result.aborted) return out;
-    const auto id = RunFolder::episode_file_id(task.variant->id, task.index);
     out.record = std::move(result.record);
     out.simulated_s = result.simulated_s;
     out.files["events/" + id + ".jsonl"] = result.events.to_jsonl();

@@ -1,5 +1,6 @@
 // The default shared models and the robot body backed by the stage's MuJoCo Nao.
 
+#include <mujoco/mujoco.h>
 #include <spdlog/spdlog.h>
 
 #include "freeplay/agents/params.hpp"
@@ -48,6 +49,19 @@ class StageRobotBody final : public RobotBody {
     if (avatar.eyes_site >= 0) return stage_.site_position(avatar.eyes_site);
     // The purple child's face when the scene has no avatar there: across the table, at seated eye height.
     return {0.3, -0.6, 0.25};
+  }
+
+  void joint_state(RobotSnapshot& snapshot) const override {
+    const auto& nao = stage_.model().nao();
+    const mjData* d = stage_.data();
+    const bool dynamic = stage_.mode() == stage::StageMode::dynamic;
+    for (int j = 0; j < stage::kNaoJointCount; ++j) {
+      const auto ju = static_cast<std::size_t>(j);
+      snapshot.joint_names.emplace_back(stage::kNaoJointNames[ju]);
+      snapshot.positions.push_back(d->qpos[nao.qpos[ju]]);
+      snapshot.velocities.push_back(dynamic ? d->qvel[nao.dof[ju]] : 0.0);
+      snapshot.efforts.push_back(dynamic ? d->qfrc_actuator[nao.dof[ju]] : 0.0);
+    }
   }
 
  private:

@@ -5,12 +5,15 @@
 
 #include <atomic>
 #include <cstdint>
+#include <filesystem>
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 
 #include "freeplay/agents/annotations.hpp"
 #include "freeplay/agents/params.hpp"
 #include "freeplay/core/event_log.hpp"
+#include "freeplay/runner/episode_observer.hpp"
 #include "freeplay/runner/robot_body.hpp"
 #include "freeplay/runner/scenario.hpp"
 #include "freeplay/runner/suite_runner.hpp"
@@ -41,8 +44,17 @@ struct EpisodeResult {
 /// Runs one episode of `scenario` from root seed `seed`; returns with `aborted` when `stop` becomes true.
 EpisodeResult run_episode(const Scenario& scenario, std::uint64_t seed, const SharedModels& models,
                           const std::atomic<bool>& stop);
+/// Same, with observers that see every 10 Hz tick of every stage (cameras, recorders); the result is identical
+/// to the run without observers except for the fields the observers add to the record.
+EpisodeResult run_episode(const Scenario& scenario, std::uint64_t seed, const SharedModels& models,
+                          const std::atomic<bool>& stop, EpisodeObservers& observers, const EpisodeInfo& info);
 
-/// The suite runner's episode function: writes `events/<id>.jsonl` and `annotations/<id>.yaml`.
-EpisodeFunction episode_function(const SharedModels& models);
+/// Makes the observers an episode of a scenario needs (cameras, recorder) for the run folder `run_dir`.
+using ObserverFactory = std::function<EpisodeObservers(const Scenario& scenario, const std::filesystem::path& run_dir)>;
+
+/// The suite runner's episode function: writes `events/<id>.jsonl` and `annotations/<id>.yaml`; with an
+/// observer factory, attaches its observers to each episode (they write under `run_dir`).
+EpisodeFunction episode_function(const SharedModels& models, ObserverFactory observers = {},
+                                 std::filesystem::path run_dir = {});
 
 }  // namespace freeplay::runner

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "freeplay/core/geometry.hpp"
+#include "freeplay/runner/episode_observer.hpp"
 
 namespace freeplay::runner {
 
@@ -34,6 +35,8 @@ class RobotBody {
   virtual void rest() = 0;
   /// Where a seated child's face is (for LookAt child and mutual gaze), by seat name.
   virtual Eigen::Vector3d child_face(const std::string& seat) const = 0;
+  /// Fills the joint names, positions, velocities and efforts of `snapshot` (sensor_msgs/JointState).
+  virtual void joint_state(RobotSnapshot& snapshot) const { (void)snapshot; }
 };
 
 /// Builds a robot body for the robot mode of a scenario ("kinematic" or "dynamic") and its arm reach (m).
