@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "command_registry.hpp"
+#include "episode_observers.hpp"
 #include "freeplay/core/atomic_file.hpp"
 #include "freeplay/core/error.hpp"
 #include "freeplay/runner/episode.hpp"
@@ -35,6 +36,7 @@ struct RunCommandOptions {
   std::string shard;
   bool quiet = false;
   bool no_summary = false;
+  bool record = false;
 };
 
 std::pair<int, int> parse_shard(const std::string& text) {
@@ -135,7 +137,7 @@ void run_command(const RunCommandOptions& o, bool suite_command) {
 
   g_stop.store(false);
   auto previous_handler = std::signal(SIGINT, on_interrupt);
-  const auto report = runner::run_suite(suite, options, runner::episode_function(models), g_stop);
+  const auto report = runner::run_suite(suite, options, runner::episode_function(models, make_observer_factory({o.record}), out), g_stop);
   std::signal(SIGINT, previous_handler);
 
   const bool complete = report.skipped + report.finished >= report.total;
@@ -161,6 +163,7 @@ void add_run_options(CLI::App* cmd, const std::shared_ptr<RunCommandOptions>& o,
   cmd->add_option("--set", o->overrides, "Override a scenario value, KEY.PATH=VALUE, validated like the file "
                                           "(repeatable), e.g. --set planner.name=rrtconnect");
   cmd->add_flag("-q,--quiet", o->quiet, "No progress line and no summary on the terminal");
+  cmd->add_flag("--record", o->record, "Record every episode as a ROS bag session folder (as `record: true`)");
   cmd->footer(
       "Writes episodes.jsonl (one line per episode), events/<episode>.jsonl, annotations/<episode>.yaml "
       "(PInSoRo format), summary.csv and summary.md into the run folder. Ctrl-C stops cleanly: finished episodes "

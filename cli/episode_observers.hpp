@@ -1,0 +1,33 @@
+#pragma once
+// What watches each episode of `freeplay run/suite`: the ROS bag recorder (with `record:` or `--record`) and the
+// camera rig (when the scenario lists cameras), which hands its frames to the recorder and the video writers.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "freeplay/runner/episode.hpp"
+#include "freeplay/runner/frame_sink.hpp"
+
+namespace freeplay::cli {
+
+/// Command-line choices that shape the observers.
+struct ObserverOptions {
+  bool record = false;  ///< `--record`: record every episode even when its scenario does not ask for it
+};
+
+/// The observer factory of `freeplay run/suite`: recorder first (it is also a frame sink), then the camera rig.
+runner::ObserverFactory make_observer_factory(ObserverOptions options);
+
+/// Adds the recorder of one episode when it records; pushes the frame sinks it wants fed (cli/observers_recording.cpp).
+void add_recording_observers(const runner::Scenario& scenario, const std::filesystem::path& run_dir,
+                             const ObserverOptions& options, runner::EpisodeObservers& observers,
+                             std::vector<runner::FrameSink*>& frame_sinks);
+
+/// Adds the camera rig when the scenario lists cameras, feeding `frame_sinks` and its own video writers
+/// (cli/observers_cameras.cpp).
+void add_camera_observers(const runner::Scenario& scenario, const std::filesystem::path& run_dir,
+                          const ObserverOptions& options, runner::EpisodeObservers& observers,
+                          const std::vector<runner::FrameSink*>& frame_sinks);
+
+}  // namespace freeplay::cli
