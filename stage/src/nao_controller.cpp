@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include "freeplay/core/error.hpp"
 #include "freeplay/stage/pan_tilt.hpp"
@@ -23,7 +24,83 @@ constexpr std::array<double, 5> kPointingSeed = {0.5, -0.25, 1.2, 0.9, 0.0};
 constexpr int kLHipYawPitch = 8;
 constexpr int kRHipYawPitch = 14;
 
+Eigen::Quaterniond quat_at(const mjtNum* q) { return {q[0], q[1], q[2], q[3]}; }
+
 }  // namespace
+
+// Forward kinematics of the bodies from the right shoulder down to the fingertip site only, with MuJoCo's body and
+// hinge-joint conventions (mj_kinematics), and the fingertip Jacobian of the pointing joints: the IK's inner loop
+// without recomputing the whole scene.
+class ArmChain {
+ public:
+  ArmChain(const mjModel* m, const NaoIndex& nao) : m_(m), site_(nao.fingertip_site) {
+    for (int body = m->site_bodyid[site_]; body > 0; body = m->body_parentid[body]) {
+      bodies_.push_back(body);
+      if (body == nao.rshoulder_body) break;
+    }
+    std::reverse(bodies_.begin(), bodies_.end());
+    for (size_t c = 0; c < kRightArm.size(); ++c) column_of_joint_[nao.joint[static_cast<size_t>(kRightArm[c])]] = static_cast<int>(c);
+  }
+
+  // The body the chain hangs from (the shoulder's parent).
+  int base() const { return m_->body_parentid[bodies_.front()]; }
+
+  // Fingertip position for `qpos` with the base at (`base_pos`, `base_quat`); fills `jacobian` (3 × 5, pointing
+  // joints in kRightArm order) when given.
+  Vector3d fingertip(const Vector3d& base_pos, const Eigen::Quaterniond& base_quat, const mjtNum* qpos,
+                     Eigen::Matrix<double, 3, 5>* jacobian) {
+    Vector3d pos = base_pos;
+    Eigen::Quaterniond quat = base_quat;
+    int hinges = 0;
+    for (const int body : bodies_) {
+      pos += quat * Eigen::Map<const Vector3d>(m_->body_pos + 3 * body);
+      quat = quat * quat_at(m_->body_quat + 4 * body);
+      for (int j = m_->body_jntadr[body]; j < m_->body_jntadr[body] + m_->body_jntnum[body]; ++j) {
+        const Vector3d local_anchor = Eigen::Map<const Vector3d>(m_->jnt_pos + 3 * j);
+        const Vector3d local_axis = Eigen::Map<const Vector3d>(m_->jnt_axis + 3 * j);
+        const Vector3d anchor = pos + quat * local_anchor;
+        const int adr = m_->jnt_qposadr[j];
+        quat = quat * Eigen::Quaterniond(Eigen::AngleAxisd(qpos[adr] - m_->qpos0[adr], local_axis));
+        pos = anchor - quat * local_anchor;
+        anchors_[static_cast<size_t>(hinges)] = anchor;
+        axes_[static_cast<size_t>(hinges)] = quat * local_axis;
+        joints_[static_cast<size_t>(hinges)] = j;
+        ++hinges;
+      }
+      quat.normalize();
+    }
+    const Vector3d tip = pos + quat * Eigen::Map<const Vector3d>(m_->site_pos + 3 * site_);
+    if (jacobian != nullptr) {
+      jacobian->setZero();
+      for (int h = 0; h < hinges; ++h) {
+        const auto it = column_of_joint_.find(joints_[static_cast<size_t>(h)]);
+        if (it == column_of_joint_.end()) continue;
+        jacobian->col(it->second) = axes_[static_cast<size_t>(h)].cross(tip - anchors_[static_cast<size_t>(h)]);
+      }
+    }
+    return tip;
+  }
+
+  // True when every joint of the chain is a hinge (what `fingertip` models).
+  bool only_hinges() const {
+    for (const int body : bodies_) {
+      for (int j = m_->body_jntadr[body]; j < m_->body_jntadr[body] + m_->body_jntnum[body]; ++j) {
+        if (m_->jnt_type[j] != mjJNT_HINGE) return false;
+      }
+    }
+    return bodies_.size() <= kMaxBodies;
+  }
+
+ private:
+  static constexpr size_t kMaxBodies = 16;
+  const mjModel* m_;
+  int site_;
+  std::vector<int> bodies_;
+  std::map<int, int> column_of_joint_;
+  std::array<Vector3d, kMaxBodies> anchors_{};
+  std::array<Vector3d, kMaxBodies> axes_{};
+  std::array<int, kMaxBodies> joints_{};
+};
 
 NaoController::NaoController(Stage& stage) : stage_(stage), nao_(stage.model().nao()) {
   if (!nao_.present) throw InputError("this stage has no NAO (use the child-robot scene)", "scene", "child-robot");
@@ -129,13 +206,27 @@ void NaoController::go_to_posture(NaoPosture posture) {
 }
 
 GazeResult NaoController::look_at(const Eigen::Vector3d& point) {
-  stage_.update_kinematics();
-  const mjData* d = stage_.data();
-  // Pan/tilt is solved in the torso-aligned frame at the neck; the gaze origin is CameraTop's position.
-  const RowMatrix3d torso_r = Eigen::Map<const RowMatrix3d>(d->xmat + 9 * nao_.torso_body);
-  const Vector3d neck = Eigen::Map<const Vector3d>(d->xpos + 3 * nao_.neck_body);
-  const Vector3d target = torso_r.transpose() * (point - neck);
   const mjModel* m = stage_.model().mj();
+  const mjData* d = stage_.data();
+  // Pan/tilt is solved in the torso-aligned frame at the neck; the gaze origin is CameraTop's position. The torso
+  // is the mocap body and the neck hangs from it with its joints at its origin, so neither needs the kinematics.
+  Eigen::Matrix3d torso_r;
+  Vector3d neck;
+  bool neck_at_origin = m->body_parentid[nao_.neck_body] == nao_.torso_body && m->body_parentid[nao_.torso_body] == 0;
+  for (int j = m->body_jntadr[nao_.neck_body]; neck_at_origin && j < m->body_jntadr[nao_.neck_body] + m->body_jntnum[nao_.neck_body]; ++j) {
+    neck_at_origin = Eigen::Map<const Vector3d>(m->jnt_pos + 3 * j).isZero();
+  }
+  if (neck_at_origin) {
+    const Eigen::Quaterniond torso_q = quat_at(d->mocap_quat + 4 * nao_.torso_mocap).normalized();
+    torso_r = torso_q.toRotationMatrix();
+    neck = Eigen::Map<const Vector3d>(d->mocap_pos + 3 * nao_.torso_mocap) +
+           torso_q * Eigen::Map<const Vector3d>(m->body_pos + 3 * nao_.neck_body);
+  } else {
+    stage_.update_kinematics();
+    torso_r = Eigen::Map<const RowMatrix3d>(d->xmat + 9 * nao_.torso_body);
+    neck = Eigen::Map<const Vector3d>(d->xpos + 3 * nao_.neck_body);
+  }
+  const Vector3d target = torso_r.transpose() * (point - neck);
   const Vector3d eye_offset = Eigen::Map<const Vector3d>(m->site_pos + 3 * nao_.gaze_site);
   const PanTilt wanted = pan_tilt_towards(target, eye_offset);
   GazeResult result;
@@ -157,27 +248,38 @@ PointingResult NaoController::solve_pointing(const Vector3d& target, const NaoJo
   mju_copy(scratch_->mocap_pos, stage_.data()->mocap_pos, 3 * m->nmocap);
   mju_copy(scratch_->mocap_quat, stage_.data()->mocap_quat, 4 * m->nmocap);
   for (int i = 0; i < kNaoJointCount; ++i) scratch_->qpos[nao_.qpos[static_cast<size_t>(i)]] = seed[static_cast<size_t>(i)];
-  std::vector<mjtNum> jacobian(static_cast<size_t>(3 * m->nv));
+  if (arm_chain_ == nullptr) {
+    arm_chain_ = std::make_shared<ArmChain>(m, nao_);
+    if (!arm_chain_->only_hinges()) throw std::logic_error("the NAO's right arm must be a chain of hinge joints");
+  }
+  // The arm's base does not move with the pointing joints: the torso is the NAO's mocap body (its pose is the
+  // mocap pose); any other base is posed once by the full kinematics.
+  Vector3d base_pos;
+  Eigen::Quaterniond base_quat;
+  if (arm_chain_->base() == nao_.torso_body && m->body_parentid[nao_.torso_body] == 0) {
+    base_pos = Eigen::Map<const Vector3d>(scratch_->mocap_pos + 3 * nao_.torso_mocap);
+    base_quat = quat_at(scratch_->mocap_quat + 4 * nao_.torso_mocap).normalized();
+  } else {
+    mj_kinematics(m, scratch_);
+    base_pos = Eigen::Map<const Vector3d>(scratch_->xpos + 3 * arm_chain_->base());
+    base_quat = quat_at(scratch_->xquat + 4 * arm_chain_->base());
+  }
   Eigen::Matrix<double, 3, 5> j;
   const Eigen::Vector3d weights(1.0, 1.0, 0.3);  // the on-screen position matters more than the hover height
   constexpr double kDamping = 0.01;
   Vector3d fingertip = Vector3d::Zero();
   double previous_error = std::numeric_limits<double>::infinity();
   for (int iteration = 0; iteration < 150; ++iteration) {
-    mj_kinematics(m, scratch_);
-    mj_comPos(m, scratch_);
-    fingertip = Eigen::Map<const Vector3d>(scratch_->site_xpos + 3 * nao_.fingertip_site);
+    fingertip = arm_chain_->fingertip(base_pos, base_quat, scratch_->qpos, &j);
     const Vector3d error = (target - fingertip).cwiseProduct(weights);
     if (error.head<2>().norm() < 1e-4 && std::abs(error.z()) < 1e-3) break;
     // Out of reach, the arm stretches towards the target and the error stops shrinking: stop there.
     if (iteration >= 8 && previous_error - error.norm() < 1e-5) break;
     previous_error = error.norm();
-    mj_jacSite(m, scratch_, jacobian.data(), nullptr, nao_.fingertip_site);
     Eigen::Matrix<double, 5, 1> q, lo, hi, preferred;
     for (size_t c = 0; c < kRightArm.size(); ++c) {
       const int k = kRightArm[c];
-      const int dof = nao_.dof[static_cast<size_t>(k)];
-      for (int r = 0; r < 3; ++r) j(r, static_cast<Eigen::Index>(c)) = jacobian[static_cast<size_t>(r * m->nv + dof)] * weights[r];
+      for (int r = 0; r < 3; ++r) j(r, static_cast<Eigen::Index>(c)) *= weights[r];
       const int joint = nao_.joint[static_cast<size_t>(k)];
       q[static_cast<Eigen::Index>(c)] = scratch_->qpos[nao_.qpos[static_cast<size_t>(k)]];
       lo[static_cast<Eigen::Index>(c)] = m->jnt_range[2 * joint];
@@ -196,8 +298,7 @@ PointingResult NaoController::solve_pointing(const Vector3d& target, const NaoJo
       scratch_->qpos[nao_.qpos[static_cast<size_t>(kRightArm[c])]] = q[static_cast<Eigen::Index>(c)];
     }
   }
-  mj_kinematics(m, scratch_);
-  fingertip = Eigen::Map<const Vector3d>(scratch_->site_xpos + 3 * nao_.fingertip_site);
+  fingertip = arm_chain_->fingertip(base_pos, base_quat, scratch_->qpos, nullptr);
   *out = seed;
   for (int k : kRightArm) (*out)[static_cast<size_t>(k)] = scratch_->qpos[nao_.qpos[static_cast<size_t>(k)]];
   PointingResult result;

@@ -91,6 +91,7 @@ class NaoController {
   const NaoIndex& nao_;
   NaoJointVector targets_{};
   mjData* scratch_ = nullptr;
+  std::shared_ptr<class ArmChain> arm_chain_;  // the right arm's kinematic chain (pointing IK)
   std::vector<mjtNum> gravity_;
   std::vector<TimedScreenPoint> path_;
 };
