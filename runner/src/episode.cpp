@@ -186,8 +186,12 @@ class Episode {
       config.arm_reach = planning::ArmReach{
           disc.centre, scenario.arm_reach_m,
           std::sqrt(std::max(0.0, scenario.arm_reach_m * scenario.arm_reach_m - disc.radius * disc.radius))};
+      planning::PlannerOptions planner_options;
+      // The real A* plans to any point; 101 exceeds every occupancy, so no goal is refused for lying on items.
+      if (!scenario.reject_blocked_goals) planner_options.goal_blocked_occupancy = 101;
       executor_ = std::make_unique<planning::MoveExecutor>(
-          std::shared_ptr<const planning::MotionPlanner>(planning::make_planner(scenario.planner)), config);
+          std::shared_ptr<const planning::MotionPlanner>(planning::make_planner(scenario.planner, planner_options)),
+          config);
       planner_rng_ = seeds_.stream("planner");
       perception_ = std::make_unique<PerceptionModel>(
           PerceptionSettings{scenario.face_detection_rate, scenario.perception_latency_s, scenario.gaze_noise_deg},

@@ -63,6 +63,9 @@ std::shared_ptr<const Schema> scenario_schema(const ScenarioVocabulary& vocabula
                    "wall-clock budget; only anytime planners (rrtstar, bitstar) use it up: keep it large so that "
                    "deterministic planners never hit it on a slow machine"),
       with_default("finger_speed_mps", S::number(0.005, 1.0), "0.05", "5 mm per 0.1 s in the real system"),
+      with_default("reject_blocked_goals", S::boolean(), "false",
+                   "refuse a goal whose cell lies inside other items' footprints; the real planner plans to any "
+                   "point (the item then lands on the others and the physics pushes them apart)"),
   });
   const auto perception = S::map({
       with_default("face_detection_rate", S::number(0, 1), "0.98"),
@@ -133,6 +136,7 @@ Scenario scenario_from_document(YamlDocument document, const std::vector<std::st
   s.planner = root["planner"]["name"].as<std::string>();
   s.planner_budget_s = root["planner"]["time_budget_s"].as<double>();
   s.finger_speed_mps = root["planner"]["finger_speed_mps"].as<double>();
+  s.reject_blocked_goals = root["planner"]["reject_blocked_goals"].as<bool>();
   s.face_detection_rate = root["perception"]["face_detection_rate"].as<double>();
   s.perception_latency_s = root["perception"]["latency_s"].as<double>();
   s.gaze_noise_deg = root["perception"]["gaze_noise_deg"].as<double>();

@@ -65,6 +65,7 @@ struct Scenario {
   std::string planner = "astar";         ///< motion planner
   double planner_budget_s = 1.0;         ///< wall-clock planning budget (only anytime planners use it up)
   double finger_speed_mps = 0.05;        ///< robot finger speed (5 mm per 0.1 s)
+  bool reject_blocked_goals = false;     ///< refuse goals inside other footprints (the real planner does not)
   double face_detection_rate = 0.98;     ///< perception: fraction of frames with the face found
   double perception_latency_s = 0.1;     ///< perception latency
   double gaze_noise_deg = 5.0;           ///< perception: head-pose noise (SD)
