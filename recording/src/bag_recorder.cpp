@@ -443,7 +443,8 @@ void BagRecorder::end(runner::EpisodeResult& result) {
   write_file_atomically(d.paths.annotations,
                         agents::to_pinsoro_yaml(result.annotations, base,
                                                 "Annotations made by freeplay-sim (synthetic ground truth; ROS time)"));
-  const auto children = result.record.value("children", nlohmann::json::object());
+  const auto children = result.record.is_object() ? result.record.value("children", nlohmann::json::object())
+                                                  : nlohmann::json::object();
   d.write_experiment(&children, true);
   result.record["recording"] = (std::filesystem::path("sessions") / d.id).generic_string();
 }
