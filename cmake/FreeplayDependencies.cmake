@@ -45,3 +45,22 @@ if(NOT TARGET ompl::ompl)
   set_target_properties(ompl::ompl PROPERTIES INTERFACE_LINK_LIBRARIES "${FREEPLAY_OMPL_LIBRARY}"
                         INTERFACE_INCLUDE_DIRECTORIES "/usr/include/ompl-1.5")
 endif()
+
+# Debian's ROS 1 bag libraries (librosbag-storage-dev and the message packages): one imported target. Their headers
+# need the extra include folders below (engineering-notes.md §1).
+find_library(FREEPLAY_ROSBAG_STORAGE_LIBRARY NAMES rosbag_storage)
+if(FREEPLAY_ROSBAG_STORAGE_LIBRARY AND EXISTS /usr/include/rosbag/bag.h AND EXISTS /usr/include/visualization_msgs)
+  add_library(ros::rosbag_storage INTERFACE IMPORTED)
+  set(FREEPLAY_ROS_LIBRARIES)
+  foreach(lib rosbag_storage roscpp_serialization rostime cpp_common console_bridge boost_filesystem class_loader)
+    find_library(FREEPLAY_ROS_${lib} NAMES ${lib} REQUIRED)
+    list(APPEND FREEPLAY_ROS_LIBRARIES ${FREEPLAY_ROS_${lib}})
+  endforeach()
+  set_target_properties(ros::rosbag_storage PROPERTIES
+    INTERFACE_LINK_LIBRARIES "${FREEPLAY_ROS_LIBRARIES}"
+    INTERFACE_INCLUDE_DIRECTORIES "/usr/include/pluginlib;/usr/include/class_loader;/usr/include/rcpputils;/usr/include/rcutils;/usr/include/ament_index_cpp")
+  set(FREEPLAY_HAVE_ROSBAG ON)
+else()
+  message(STATUS "ROS 1 bag libraries not found (scripts/setup.sh installs them): recording is not built")
+  set(FREEPLAY_HAVE_ROSBAG OFF)
+endif()

@@ -9,11 +9,12 @@ packages=(
   libbox2d-dev libompl-dev libopencv-dev libeigen3-dev libyaml-cpp-dev
   libgtest-dev libgmock-dev libbenchmark-dev libbenchmark-tools
   libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev libboost-math-dev
+  librosbag-storage-dev libsensor-msgs-dev libtf2-msgs-dev libgeometry-msgs-dev libstd-msgs-dev
+  libvisualization-msgs-dev librcpputils-dev librcutils-dev libament-index-cpp-dev python3-rosbag
 )
 for arg in "$@"; do
   case "$arg" in
-    --with-ros) packages+=(librosbag-storage-dev libsensor-msgs-dev libtf2-msgs-dev libgeometry-msgs-dev
-                           libstd-msgs-dev librcpputils-dev librcutils-dev libament-index-cpp-dev python3-rosbag) ;;
+    --with-ros) ;;  # the ROS 1 bag packages are in the default list now (recording and its tests need them)
     --with-slurm) packages+=(slurm-wlm munge) ;;
     -h|--help) sed -n '2,3p' "$0"; exit 0 ;;
     *) echo "setup.sh: unknown option '$arg' (allowed: --with-ros, --with-slurm)" >&2; exit 2 ;;

@@ -358,6 +358,7 @@ class Episode {
       s.gender = std::string(agents::gender_name(c.agent->profile().gender));
       s.gaze = std::string(gaze_name(c.last.gaze.kind));
       s.gaze_point = gaze_point_of(c);
+      s.head = face_of(c.seat_name);
       s.touches.clear();
       for (const auto& touch : touches) {
         if (c.owns_finger(touch.finger)) s.touches.emplace_back(touch.finger, touch.position);

@@ -97,7 +97,16 @@ std::shared_ptr<const Schema> scenario_schema(const ScenarioVocabulary& vocabula
       with_default("perception", perception, "{}"),
       with_default("protocol", protocol, "{}"),
       with_default("cameras", S::list(camera), "[]"),
-      with_default("record", S::boolean(), "false"),
+      with_default("record",
+                   S::one_of({S::boolean(),
+                              S::map({with_default("bag", S::boolean(), "true", "write the ROS bag"),
+                                      with_default("jpeg_quality", S::integer(1, 100), "90"),
+                                      with_default("png_level", S::integer(0, 9), "3"),
+                                      with_default("chunk_kb", S::integer(16, 1 << 20), "768"),
+                                      with_default("compression", S::enumeration({"none", "lz4", "bz2"}), "none")})},
+                             "true, false, or a map {bag: bool, jpeg_quality: 1–100, png_level: 0–9, "
+                             "chunk_kb: 16–1048576, compression: none|lz4|bz2}"),
+                   "false", "true, or a map {bag, jpeg_quality, png_level, chunk_kb, compression} (docs/recording.md)"),
   });
 }
 
@@ -148,7 +157,13 @@ Scenario scenario_from_document(YamlDocument document, const std::vector<std::st
     s.cameras.push_back({c["name"].as<std::string>(), c["rate_hz"].as<double>(), c["width"].as<int>(),
                          c["height"].as<int>(), c["depth"].as<bool>()});
   }
-  s.record = root["record"].as<bool>();
+  if (const auto& r = root["record"]; r.IsMap()) {
+    s.record = r["bag"].as<bool>();
+    s.recording = {r["jpeg_quality"].as<int>(), r["png_level"].as<int>(), r["chunk_kb"].as<int>(),
+                   r["compression"].as<std::string>()};
+  } else {
+    s.record = r.as<bool>();
+  }
   s.source = root;
   YAML::Emitter emitter;
   emitter << root;

@@ -31,6 +31,7 @@ struct ChildSnapshot {
   std::string gender;                            ///< "female" | "male"
   std::string gaze;                              ///< gaze target as in the events ("tray", "item", "partner", …)
   Eigen::Vector3d gaze_point = Eigen::Vector3d::Zero();  ///< the 3-D point looked at (sandtray frame, m)
+  Eigen::Vector3d head = Eigen::Vector3d::Zero();        ///< where the child's face is (sandtray frame, m)
   std::vector<std::pair<int, Vec2>> touches;     ///< this child's fingers on the screen: (finger id, point)
   bool speaking = false;                         ///< an utterance is under way
 };

@@ -39,6 +39,14 @@ struct CameraStream {
   bool depth = false;    ///< also read back depth
 };
 
+/// How an episode is recorded (`record:` true or a map; docs/recording.md).
+struct RecordSettings {
+  int jpeg_quality = 90;              ///< colour JPEG quality (the real launch files: 90)
+  int png_level = 3;                  ///< PNG level of depth and background images (the real launch files: 3)
+  int chunk_kb = 768;                 ///< bag chunk size (rosbag's default): at most this much is lost on a kill
+  std::string compression = "none";   ///< bag chunk compression: "none" (as the real bags), "lz4", "bz2"
+};
+
 /// The protocol of the paper, with stage durations (s).
 struct Protocol {
   double greeting_s = 300;         ///< greetings (the robot says hello in child-robot sessions)
@@ -72,6 +80,7 @@ struct Scenario {
   Protocol protocol;                     ///< stage durations
   std::vector<CameraStream> cameras;     ///< camera output (none: no rendering)
   bool record = false;                   ///< write a ROS bag per episode
+  RecordSettings recording;              ///< how (when `record`)
   YAML::Node source;                     ///< the validated document with defaults filled in
   std::uint64_t config_hash = 0;         ///< hash of the validated document (reproducibility)
 };

@@ -1,0 +1,102 @@
+// Recording cost: an episode with and without the bag recorder (per simulated second), and camera frame sets at the
+// real resolutions (per 1/30 s: 3 colour 960×540 JPEG q90 + 2 depth 640×480 compressedDepth PNG), with bag bytes.
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+
+#include "freeplay/core/yaml_schema.hpp"
+#include "freeplay/recording/bag_recorder.hpp"
+#include "freeplay/runner/episode.hpp"
+#include "freeplay/sim/item_catalogue.hpp"
+#include "freeplay/sim/sandtray.hpp"
+
+using namespace freeplay;
+
+namespace {
+
+const runner::SharedModels& models() {
+  static const runner::SharedModels m = runner::SharedModels::load_default();
+  return m;
+}
+
+runner::Scenario scenario() {
+  return runner::scenario_from_document(parse_yaml(
+      "name: bench\ncondition: child-robot\nrecord: true\n"
+      "protocol: {greeting_s: 1, tutorial_s: 1, freeplay_cap_s: 30, debriefing_s: 1}\n",
+      "bench.yaml"));
+}
+
+std::filesystem::path bench_dir() {
+  const auto dir = std::filesystem::temp_directory_path() / "freeplay-bench-recording";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+void run(benchmark::State& state, bool record) {
+  const auto s = scenario();
+  const auto dir = bench_dir();
+  double simulated = 0.0;
+  std::uintmax_t bytes = 0;
+  for (auto _ : state) {
+    runner::EpisodeObservers observers;
+    if (record) observers.push_back(std::make_unique<recording::BagRecorder>(dir / "sessions", s.recording));
+    // An observer that does nothing, so that both variants tick at 10 Hz in every stage.
+    struct Idle final : runner::EpisodeObserver {
+      void observe(const runner::EpisodeSnapshot&) override {}
+    };
+    if (!record) observers.push_back(std::make_unique<Idle>());
+    const std::atomic<bool> stop{false};
+    const auto result = runner::run_episode(s, 11, models(), stop, observers, {&s, "bench-0000", 11});
+    simulated += result.simulated_s;
+    if (record) bytes += std::filesystem::file_size(dir / "sessions/bench-0000/freeplay.bag");
+  }
+  state.counters["sim_s_per_wall_s"] = benchmark::Counter(simulated, benchmark::Counter::kIsRate);
+  if (record) state.counters["bag_MB_per_sim_min"] = static_cast<double>(bytes) / 1e6 / (simulated / 60.0);
+}
+
+void BM_EpisodeObserved(benchmark::State& state) { run(state, false); }
+void BM_EpisodeRecorded(benchmark::State& state) { run(state, true); }
+
+// One 1/30 s camera frame set at the real resolutions, the colour images a rendered sandtray screen.
+void BM_CameraFrameSet(benchmark::State& state) {
+  const auto dir = bench_dir();
+  recording::BagRecorder recorder(dir / "sessions");
+  recorder.begin({nullptr, "frames-0000", 1});
+  sim::Sandtray tray(models().catalogue, {}, Rng(3));
+  tray.signal(sim::Signal::StartFreeplay);
+  cv::Mat rgb = tray.render_screen(960);
+  cv::Mat depth(480, 640, CV_32FC1);
+  for (int r = 0; r < depth.rows; ++r) {
+    for (int c = 0; c < depth.cols; ++c) depth.at<float>(r, c) = 0.4F + 0.0005F * static_cast<float>(r + c);
+  }
+  const stage::CameraIntrinsics K{960, 540, 697.811, 697.811, 479.047, 261.227};
+  const stage::CameraIntrinsics K_depth{640, 480, 475.0, 475.0, 320.0, 240.0};
+  double t = 0.0;
+  for (auto _ : state) {
+    for (const char* camera : {"camera_purple", "camera_yellow", "env_camera"}) {
+      stage::FramePack f;
+      f.camera = camera;
+      f.stamp = t;
+      f.rgb = rgb;
+      f.K = K;
+      if (std::string(camera) != "env_camera") {
+        f.depth_m = depth;
+        f.K_depth = K_depth;
+      }
+      recorder.write(f);
+    }
+    t += 1.0 / 30.0;
+  }
+  runner::EpisodeResult result;
+  recorder.end(result);
+  const auto bytes = static_cast<double>(std::filesystem::file_size(dir / "sessions/frames-0000/freeplay.bag"));
+  state.counters["sim_s_per_wall_s"] = benchmark::Counter(t, benchmark::Counter::kIsRate);
+  state.counters["bag_MB_per_sim_min"] = bytes / 1e6 / (t / 60.0);
+}
+
+}  // namespace
+
+BENCHMARK(BM_EpisodeObserved)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(BM_EpisodeRecorded)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(BM_CameraFrameSet)->Unit(benchmark::kMillisecond)->MinTime(2.0);

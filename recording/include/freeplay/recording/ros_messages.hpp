@@ -1,0 +1,75 @@
+#pragma once
+// The ROS 1 message types the recorder writes, usable from C++20: Debian's generated headers name
+// `ContainerAllocator::rebind`, which std::allocator lost in C++20, so every message is instantiated with
+// RosAllocator (std::allocator plus rebind). The bag stores the standard type names, MD5 sums and definitions.
+
+#include <memory>
+#include <string>
+#include <string_view>
+
+namespace freeplay::recording {
+
+/// std::allocator with the `rebind` member the ROS 1 message headers expect.
+template <class T>
+struct RosAllocator : std::allocator<T> {
+  using value_type = T;
+  RosAllocator() = default;
+  /// Converting constructor (allocators of every type are interchangeable).
+  template <class U>
+  RosAllocator(const RosAllocator<U>& /*other*/) noexcept {}
+  /// The same allocator for another type.
+  template <class U>
+  struct rebind {
+    using other = RosAllocator<U>;
+  };
+};
+
+}  // namespace freeplay::recording
+
+#include <geometry_msgs/PoseStamped.h>
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
+#include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/CompressedImage.h>
+#include <sensor_msgs/JointState.h>
+#include <std_msgs/Empty.h>
+#include <std_msgs/String.h>
+#include <tf2_msgs/TFMessage.h>
+#include <visualization_msgs/MarkerArray.h>
+
+namespace freeplay::recording::msg {
+
+using Allocator = RosAllocator<void>;
+using String = std_msgs::String_<Allocator>;                        ///< std_msgs/String
+using Empty = std_msgs::Empty_<Allocator>;                          ///< std_msgs/Empty
+using Header = std_msgs::Header_<Allocator>;                        ///< std_msgs/Header
+using TFMessage = tf2_msgs::TFMessage_<Allocator>;                  ///< tf2_msgs/TFMessage
+using TransformStamped = geometry_msgs::TransformStamped_<Allocator>;  ///< geometry_msgs/TransformStamped
+using PoseStamped = geometry_msgs::PoseStamped_<Allocator>;         ///< geometry_msgs/PoseStamped
+using Point = geometry_msgs::Point_<Allocator>;                     ///< geometry_msgs/Point
+using Quaternion = geometry_msgs::Quaternion_<Allocator>;           ///< geometry_msgs/Quaternion
+using CompressedImage = sensor_msgs::CompressedImage_<Allocator>;   ///< sensor_msgs/CompressedImage
+using CameraInfo = sensor_msgs::CameraInfo_<Allocator>;             ///< sensor_msgs/CameraInfo
+using JointState = sensor_msgs::JointState_<Allocator>;             ///< sensor_msgs/JointState
+using Marker = visualization_msgs::Marker_<Allocator>;              ///< visualization_msgs/Marker
+using MarkerArray = visualization_msgs::MarkerArray_<Allocator>;    ///< visualization_msgs/MarkerArray
+using RosString = String::_data_type;                               ///< the string type inside messages
+
+}  // namespace freeplay::recording::msg
+
+namespace freeplay::recording {
+
+/// A ROS string from a std::string_view.
+inline msg::RosString ros_string(std::string_view text) { return msg::RosString(text.begin(), text.end()); }
+/// A std::string from a ROS string.
+inline std::string std_string(const msg::RosString& text) { return std::string(text.begin(), text.end()); }
+
+/// The fixed ROS time of the sandtray clock's origin: every stamp is `kEpochS + t` (2017-07-14 02:40:00 UTC, in
+/// the PInSoRo campaign's year), so that a session's bag is identical from run to run.
+inline constexpr double kEpochS = 1500000000.0;
+/// ROS time of sandtray time `t` (s).
+ros::Time ros_time(double t);
+/// Sandtray time (s) of a ROS time.
+double sandtray_time(const ros::Time& stamp);
+
+}  // namespace freeplay::recording

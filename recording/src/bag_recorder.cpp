@@ -1,0 +1,467 @@
+#include "freeplay/recording/bag_recorder.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "freeplay/agents/annotations.hpp"
+#include "freeplay/core/atomic_file.hpp"
+#include "freeplay/core/error.hpp"
+#include "freeplay/recording/camera_topics.hpp"
+#include "freeplay/recording/ros_messages.hpp"
+#include "freeplay/recording/session_files.hpp"
+#include "freeplay/sim/sandtray.hpp"
+#include "freeplay/sim/screen.hpp"
+#include "freeplay/sim/zones.hpp"
+
+namespace freeplay::recording {
+
+SessionPaths session_paths(const std::filesystem::path& dir) {
+  return {dir, dir / "freeplay.bag", dir / "freeplay.bag.active", dir / "experiment.yaml",
+          dir / "freeplay.annotations.freeplay-sim.yaml"};
+}
+
+namespace {
+
+constexpr double kFootprintsAfterS = 1.0;  // the game publishes /footprints once, ~1 s after start
+
+// The URDF joints sandtray → camera links (free-play-sandbox.md §2.4): xyz, rpy.
+struct StaticLink {
+  const char* frame;
+  Eigen::Vector3d xyz;
+  Eigen::Vector3d rpy;
+};
+const StaticLink kCameraLinks[] = {{"camera_purple_link", {-0.108, 0.021, 0.035}, {0, -0.349, -0.785}},
+                                   {"camera_yellow_link", {-0.108, -0.377, 0.035}, {0, -0.349, 0.785}},
+                                   {"env_camera_link", {1.4, -0.15, 0.52}, {0, 0.29, 3.142}}};
+
+msg::Quaternion quaternion(const Eigen::Quaterniond& q) {
+  msg::Quaternion out;
+  out.x = q.x();
+  out.y = q.y();
+  out.z = q.z();
+  out.w = q.w();
+  return out;
+}
+
+msg::TransformStamped transform(const ros::Time& stamp, const std::string& parent, const std::string& child,
+                                const Eigen::Vector3d& xyz, const Eigen::Quaterniond& q) {
+  msg::TransformStamped tf;
+  tf.header.stamp = stamp;
+  tf.header.frame_id = ros_string(parent);
+  tf.child_frame_id = ros_string(child);
+  tf.transform.translation.x = xyz.x();
+  tf.transform.translation.y = xyz.y();
+  tf.transform.translation.z = xyz.z();
+  tf.transform.rotation = quaternion(q);
+  return tf;
+}
+
+Eigen::Quaterniond yaw_quaternion(double yaw) { return Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ())); }
+
+Eigen::Quaterniond rpy_quaternion(const Eigen::Vector3d& rpy) {
+  return Eigen::Quaterniond(Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()) *
+                            Eigen::AngleAxisd(rpy.y(), Eigen::Vector3d::UnitY()) *
+                            Eigen::AngleAxisd(rpy.x(), Eigen::Vector3d::UnitX()));
+}
+
+msg::Point point(double x, double y, double z = 0.0) {
+  msg::Point p;
+  p.x = x;
+  p.y = y;
+  p.z = z;
+  return p;
+}
+
+rosbag::compression::CompressionType compression_of(const std::string& name) {
+  if (name == "lz4") return rosbag::compression::LZ4;
+  if (name == "bz2") return rosbag::compression::BZ2;
+  return rosbag::compression::Uncompressed;
+}
+
+std::string pinsoro_condition(const std::string& condition) {
+  return condition == "child-robot" ? "childrobot" : "childchild";
+}
+
+}  // namespace
+
+struct BagRecorder::Impl {
+  std::filesystem::path root;
+  runner::RecordSettings settings;
+  SessionPaths paths;
+  std::string id;
+  std::string condition;
+  std::uint64_t seed = 0;
+  std::string scenario_name;
+  std::string gl_renderer;
+  rosbag::Bag bag;
+  bool open = false;
+  std::mutex mutex;
+  RecordingStats stats;
+  std::uint64_t background_version = ~std::uint64_t{0};
+  bool footprints_written = false;
+  std::optional<double> freeplay_start;
+  std::map<double, std::string> markers;
+  std::map<std::string, std::string> notes;
+  std::vector<Participant> participants;  // from the first snapshot (profiles complete at the end)
+  std::map<std::string, double> camera_tf_t;
+
+  template <class M>
+  void put(const char* topic, double t, const M& message, bool latched = false) {
+    put(std::string(topic), t, message, latched);
+  }
+
+  template <class M>
+  void put(const std::string& topic, double t, const M& message, bool latched = false) {
+    if (latched) {
+      auto header = boost::make_shared<ros::M_string>();
+      (*header)["callerid"] = "/sandtray";
+      (*header)["latching"] = "1";
+      (*header)["type"] = ros::message_traits::datatype<M>();
+      (*header)["md5sum"] = ros::message_traits::md5sum<M>();
+      (*header)["message_definition"] = ros::message_traits::definition<M>();
+      bag.write(topic, ros_time(t), message, header);
+    } else {
+      bag.write(topic, ros_time(t), message);
+    }
+    ++stats.messages;
+  }
+
+  ExperimentInfo experiment(const nlohmann::json* children, bool complete) const {
+    ExperimentInfo info;
+    info.header = fmt::format("Synthetic session recorded by freeplay-sim: scenario {}, episode {}, seed {}",
+                              scenario_name, id, seed);
+    info.timestamp_ns = ros_time(freeplay_start.value_or(0.0)).toNSec();
+    info.condition = pinsoro_condition(condition);
+    const std::string suffix = condition == "child-robot" ? "2" : "1";
+    for (const auto& p : participants) {
+      Participant out = p;
+      if (children != nullptr && children->contains(p.id)) {
+        const auto& c = (*children)[p.id];
+        out.age = c.value("age", p.age);
+        out.gender = c.value("gender", p.gender);
+        out.tablet_familiarity = c.value("tablet_familiarity", std::string("na"));
+      }
+      const std::string seat = p.id;
+      out.id = fmt::format("{}-{}{}", id, seat == "purple" ? "p" : "y", suffix);
+      (seat == "purple" ? info.purple : info.yellow) = out;
+    }
+    info.markers = markers;
+    info.notes = notes;
+    info.notes["general"] = fmt::format("freeplay-sim scenario '{}', episode {}, seed {}{}", scenario_name, id, seed,
+                                        gl_renderer.empty() ? "" : "; cameras rendered by " + gl_renderer);
+    if (!complete) {
+      info.issues.push_back(
+          "recording incomplete: the episode was interrupted (a killed process leaves freeplay.bag.active: run "
+          "`rosbag reindex` on it)");
+    }
+    return info;
+  }
+
+  void write_experiment(const nlohmann::json* children, bool complete) const {
+    write_file_atomically(paths.experiment, to_experiment_yaml(experiment(children, complete)));
+  }
+
+  void close_bag() {
+    if (!open) return;
+    open = false;
+    bag.close();
+    std::filesystem::rename(paths.active_bag, paths.bag);
+  }
+
+  void write_tf(double t, const runner::EpisodeSnapshot& s) {
+    const auto stamp = ros_time(t);
+    msg::TFMessage game;  // the game's TF broadcaster: items and active touches
+    for (const auto& item : s.tray->items()) {
+      game.transforms.push_back(transform(stamp, "sandtray", item.name, {item.pose.x, item.pose.y, 0.0},
+                                          yaw_quaternion(item.pose.theta)));
+    }
+    for (const auto& touch : s.tray->touches()) {
+      game.transforms.push_back(transform(stamp, "sandtray", fmt::format("touch{}", touch.finger),
+                                          {touch.position.x(), touch.position.y(), 0.0}, Eigen::Quaterniond::Identity()));
+    }
+    put(topics::kTf, t, game);
+    msg::TFMessage others;  // sandtray_publisher (URDF camera links), head trackers, robot focus
+    for (const auto& link : kCameraLinks) {
+      others.transforms.push_back(transform(stamp, "sandtray", link.frame, link.xyz, rpy_quaternion(link.rpy)));
+    }
+    for (const auto& child : s.children) {
+      const Eigen::Vector3d direction = child.gaze_point - child.head;
+      const auto q = direction.norm() > 1e-9 ? Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitX(), direction)
+                                              : Eigen::Quaterniond::Identity();
+      others.transforms.push_back(transform(stamp, "sandtray", "child_" + child.seat + "_0", child.head, q));
+    }
+    if (s.robot != nullptr) {
+      others.transforms.push_back(
+          transform(stamp, "sandtray", "robot_focus", s.robot->gaze_point, Eigen::Quaterniond::Identity()));
+    }
+    put(topics::kTf, t, others);
+  }
+
+  void write_background(double t, const sim::Sandtray& tray) {
+    const cv::Mat& bgr = tray.background();
+    msg::CompressedImage image;
+    image.header.stamp = ros_time(t);
+    image.header.frame_id = ros_string("sandtray");
+    image.format = ros_string("rgba8; png compressed bgr8");
+    std::vector<std::uint8_t> png;
+    cv::imencode(".png", bgr, png, {cv::IMWRITE_PNG_COMPRESSION, settings.png_level});
+    image.data.assign(png.begin(), png.end());
+    put(topics::kBackground, t, image, true);
+    msg::MarkerArray zones;  // zones_from_image: DELETEALL, then one closed LINE_STRIP per contour
+    msg::Marker clear;
+    clear.header = image.header;
+    clear.header.frame_id = ros_string("/sandtray");
+    clear.action = msg::Marker::DELETEALL;
+    zones.markers.push_back(clear);
+    for (const auto& zone : tray.zones().zones()) {
+      msg::Marker m;
+      m.header = clear.header;
+      m.ns = ros_string("sandbox_zone_" + zone.colour);
+      m.id = zone.id;
+      m.type = msg::Marker::LINE_STRIP;
+      m.action = msg::Marker::ADD;
+      m.pose.orientation.w = 1.0;
+      m.scale.x = 0.005;
+      const auto rgb = sim::zone_marker_rgb(zone.colour);
+      m.color.r = static_cast<float>(rgb[0]) / 255.0F;
+      m.color.g = static_cast<float>(rgb[1]) / 255.0F;
+      m.color.b = static_cast<float>(rgb[2]) / 255.0F;
+      m.color.a = 1.0F;
+      for (const auto& v : zone.polygon) m.points.push_back(point(v.x(), v.y()));
+      if (!zone.polygon.empty()) m.points.push_back(point(zone.polygon.front().x(), zone.polygon.front().y()));
+      zones.markers.push_back(std::move(m));
+    }
+    put(topics::kZones, t, zones, true);
+  }
+
+  void write_footprints(double t, const sim::Sandtray& tray) {
+    msg::MarkerArray footprints;  // FootprintsPublisher: one closed polygon per item, in the item's frame
+    int marker_id = 0;
+    for (const auto& [name, polygon] : tray.published_footprints()) {
+      msg::Marker m;
+      m.header.stamp = ros_time(t);
+      m.header.frame_id = ros_string("/" + name);
+      m.ns = ros_string(name);
+      m.id = marker_id++;
+      m.type = msg::Marker::LINE_STRIP;
+      m.action = msg::Marker::ADD;
+      m.pose.orientation.w = 1.0;
+      m.scale.x = 0.002;
+      m.color.g = 1.0F;
+      m.color.a = 1.0F;
+      for (const auto& v : polygon) m.points.push_back(point(v.x(), v.y()));
+      if (!polygon.empty()) m.points.push_back(point(polygon.front().x(), polygon.front().y()));
+      footprints.markers.push_back(std::move(m));
+    }
+    put(topics::kFootprints, t, footprints, true);
+  }
+
+  void write_robot(double t, const runner::RobotSnapshot& robot) {
+    msg::JointState joints;
+    joints.header.stamp = ros_time(t);
+    for (const auto& name : robot.joint_names) joints.name.push_back(ros_string(name));
+    joints.position.assign(robot.positions.begin(), robot.positions.end());
+    joints.velocity.assign(robot.velocities.begin(), robot.velocities.end());
+    joints.effort.assign(robot.efforts.begin(), robot.efforts.end());
+    put(topics::kJointStates, t, joints);
+    if (robot.finger) {
+      msg::PoseStamped pose;
+      pose.header.stamp = ros_time(t);
+      pose.header.frame_id = ros_string("sandtray");
+      pose.pose.position = point(robot.finger->x(), robot.finger->y());
+      pose.pose.orientation.w = 1.0;
+      put(topics::kPoses, t, pose);
+    }
+  }
+
+  void write_event(double t, const Event& e) {
+    auto json = e.to_json();
+    json["tick"] = t;
+    msg::String text;
+    text.data = ros_string(json.dump());
+    put(topics::kEvents, t, text);
+    ++stats.events;
+    if (e.type == "interaction_event") {
+      msg::String message;
+      message.data = ros_string(e.data.value("message", ""));
+      put(topics::kInteractionEvents, t, message);
+    } else if (e.type == "say" && e.source == "robot") {
+      msg::String speech;
+      speech.data = ros_string(e.data.value("text", ""));
+      put(topics::kSpeech, t, speech);
+    }
+    if (e.type == "say" || e.type == "speech") {
+      msg::String speech;
+      speech.data = ros_string(nlohmann::json{{"t", e.t}, {"who", e.source}, {"data", e.data}}.dump());
+      put(topics::kAllSpeech, t, speech);
+    }
+    if (e.source == "protocol" && e.type == "stage") {
+      const auto stage = e.data.value("stage", "");
+      static const std::map<std::string, std::string> kSignals = {
+          {"tutorial", "start_tutorial"}, {"freeplay", "start_freeplay"}, {"debriefing", "blank_interface"}};
+      if (const auto it = kSignals.find(stage); it != kSignals.end()) {
+        put("/sandtray/signals/" + it->second, t, msg::Empty());
+      }
+      if (stage == "freeplay") freeplay_start = e.t;
+      if (freeplay_start || stage == "debriefing") {
+        const double since = e.t - freeplay_start.value_or(e.t);
+        markers[since] = "note";
+        notes[fmt::format("{:.1f}", since)] = stage + " starts";
+      }
+    }
+  }
+};
+
+BagRecorder::BagRecorder(std::filesystem::path sessions_root, runner::RecordSettings settings)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->root = std::move(sessions_root);
+  impl_->settings = std::move(settings);
+}
+
+BagRecorder::~BagRecorder() {
+  try {
+    if (impl_->open) abort();
+  } catch (...) {  // a destructor must not throw; the bag stays reindexable
+  }
+}
+
+void BagRecorder::begin(const runner::EpisodeInfo& info) {
+  std::lock_guard lock(impl_->mutex);
+  auto& d = *impl_;
+  d.id = info.id;
+  d.seed = info.seed;
+  if (info.scenario != nullptr) {
+    d.condition = info.scenario->condition;
+    d.scenario_name = info.scenario->name;
+  }
+  d.paths = session_paths(d.root / info.id);
+  std::error_code error;
+  std::filesystem::create_directories(d.paths.dir, error);
+  if (error) {
+    throw InputError(fmt::format("cannot create the session folder '{}': {}", d.paths.dir.string(), error.message()),
+                     "record", "a writable run folder (--out)");
+  }
+  for (const auto& stale : {d.paths.bag, d.paths.active_bag, d.paths.annotations}) std::filesystem::remove(stale, error);
+  try {
+    d.write_experiment(nullptr, false);
+    d.bag.open(d.paths.active_bag.string(), rosbag::bagmode::Write);
+  } catch (const std::exception& e) {
+    throw InputError(fmt::format("cannot write the session folder '{}': {}", d.paths.dir.string(), e.what()),
+                     "record", "a writable run folder (--out)");
+  }
+  d.bag.setChunkThreshold(static_cast<std::uint32_t>(d.settings.chunk_kb) * 1024U);
+  d.bag.setCompression(compression_of(d.settings.compression));
+  d.open = true;
+}
+
+void BagRecorder::observe(const runner::EpisodeSnapshot& snapshot) {
+  std::lock_guard lock(impl_->mutex);
+  auto& d = *impl_;
+  if (!d.open || snapshot.tray == nullptr) return;
+  const double t = snapshot.t;
+  if (d.participants.empty()) {
+    for (const auto& c : snapshot.children) d.participants.push_back({c.seat, c.age_years, c.gender, "na"});
+  }
+  for (const auto& e : snapshot.new_events) d.write_event(t, e);
+  d.write_tf(t, snapshot);
+  if (snapshot.tray->background_version() != d.background_version) {
+    d.background_version = snapshot.tray->background_version();
+    d.write_background(t, *snapshot.tray);
+  }
+  if (!d.footprints_written && t >= kFootprintsAfterS - 1e-9) {
+    d.footprints_written = true;
+    d.write_footprints(t, *snapshot.tray);
+  }
+  if (snapshot.robot != nullptr) d.write_robot(t, *snapshot.robot);
+}
+
+void BagRecorder::write(const stage::FramePack& frame) {
+  std::lock_guard lock(impl_->mutex);
+  auto& d = *impl_;
+  if (!d.open) return;
+  const auto names = camera_topics(frame.camera);
+  const double t = frame.stamp;
+  const auto stamp = ros_time(t);
+  const Eigen::Quaterniond q(frame.sandtray_T_camera_optical.rotation());
+  const Eigen::Vector3d xyz = frame.sandtray_T_camera_optical.translation();
+  const auto last = d.camera_tf_t.find(frame.camera);
+  if (last == d.camera_tf_t.end() || t - last->second >= 0.1 - 1e-9) {  // optical frames at 10 Hz
+    d.camera_tf_t[frame.camera] = t;
+    msg::TFMessage tf;
+    tf.transforms.push_back(transform(stamp, "sandtray", names.rgb_frame, xyz, q));
+    if (!frame.depth_m.empty() && names.depth_frame != names.rgb_frame) {
+      tf.transforms.push_back(transform(stamp, "sandtray", names.depth_frame, xyz, q));
+    }
+    d.put(topics::kTf, t, tf);
+  }
+  if (!frame.rgb.empty()) {
+    msg::CompressedImage image;
+    image.header.stamp = stamp;
+    image.header.frame_id = ros_string(names.rgb_frame);
+    image.format = ros_string(names.rgb_format);
+    const auto jpeg = encode_jpeg(frame.rgb, d.settings.jpeg_quality);
+    image.data.assign(jpeg.begin(), jpeg.end());
+    d.put(names.rgb_image, t, image);
+    d.put(names.rgb_info, t, camera_info(frame.K, names.rgb_frame, stamp));
+  }
+  if (!frame.depth_m.empty()) {
+    msg::CompressedImage depth;
+    depth.header.stamp = stamp;
+    depth.header.frame_id = ros_string(names.depth_frame);
+    depth.format = ros_string("16UC1; compressedDepth");
+    const auto data = encode_compressed_depth(frame.depth_m, d.settings.png_level);
+    depth.data.assign(data.begin(), data.end());
+    d.put(names.depth_image, t, depth);
+    d.put(names.depth_info, t, camera_info(frame.K_depth.width > 0 ? frame.K_depth : frame.K, names.depth_frame, stamp));
+  }
+  ++d.stats.frames;
+}
+
+void BagRecorder::set_gl_renderer(const std::string& renderer) {
+  std::lock_guard lock(impl_->mutex);
+  impl_->gl_renderer = renderer;
+}
+
+void BagRecorder::end(runner::EpisodeResult& result) {
+  std::lock_guard lock(impl_->mutex);
+  auto& d = *impl_;
+  if (!d.open) return;
+  const double end_t = result.simulated_s;
+  const std::string header =
+      fmt::format("Synthetic ground truth by freeplay-sim: {} seed {} (times: s since free play started)", d.id, d.seed);
+  msg::String annotations;
+  annotations.data = ros_string(agents::to_pinsoro_yaml(result.annotations, 0.0, header));
+  d.put(topics::kAnnotations, end_t, annotations, true);
+  d.close_bag();
+  const double base = ros_time(d.freeplay_start.value_or(0.0)).toSec();
+  write_file_atomically(d.paths.annotations,
+                        agents::to_pinsoro_yaml(result.annotations, base,
+                                                "Annotations made by freeplay-sim (synthetic ground truth; ROS time)"));
+  const auto children = result.record.is_object() ? result.record.value("children", nlohmann::json::object())
+                                                  : nlohmann::json::object();
+  d.write_experiment(&children, true);
+  result.record["recording"] = (std::filesystem::path("sessions") / d.id).generic_string();
+}
+
+void BagRecorder::abort() {
+  std::lock_guard lock(impl_->mutex);
+  auto& d = *impl_;
+  if (!d.open) return;
+  d.close_bag();
+  d.write_experiment(nullptr, false);
+}
+
+const SessionPaths& BagRecorder::paths() const { return impl_->paths; }
+
+RecordingStats BagRecorder::stats() const {
+  std::lock_guard lock(impl_->mutex);
+  return impl_->stats;
+}
+
+}  // namespace freeplay::recording

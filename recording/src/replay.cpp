@@ -1,0 +1,316 @@
+#include "freeplay/recording/replay.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+#include <set>
+
+#include "freeplay/agents/annotations.hpp"
+#include "freeplay/agents/perception.hpp"
+#include "freeplay/core/error.hpp"
+#include "freeplay/recording/bag_recorder.hpp"
+#include "freeplay/recording/ros_messages.hpp"
+
+namespace freeplay::recording {
+
+namespace {
+
+// The episode loop's constants (runner/src/episode.cpp), which the metrics' definitions use.
+constexpr double kTickS = 0.1;
+constexpr double kMinMoveM = 0.02;
+constexpr double kTakenWindowS = 30.0;
+
+std::filesystem::path bag_of(const std::filesystem::path& path) {
+  if (std::filesystem::is_regular_file(path)) return path;
+  const auto paths = session_paths(path);
+  if (std::filesystem::exists(paths.bag)) return paths.bag;
+  if (std::filesystem::exists(paths.active_bag)) return paths.active_bag;
+  throw InputError(fmt::format("no freeplay.bag in '{}'", path.string()), "SESSION_DIR",
+                   "a session folder (<run>/sessions/<episode id>) or a .bag file");
+}
+
+double mean_or_nan(const std::vector<double>& v) {
+  if (v.empty()) return std::nan("");
+  double s = 0.0;
+  for (const double x : v) s += x;
+  return s / static_cast<double>(v.size());
+}
+
+}  // namespace
+
+SessionRecording read_session(const std::filesystem::path& path) {
+  SessionRecording out;
+  out.bag = bag_of(path);
+  rosbag::Bag bag;
+  try {
+    bag.open(out.bag.string(), rosbag::bagmode::Read);
+  } catch (const rosbag::BagUnindexedException&) {
+    throw InputError(fmt::format("'{}' is not indexed (the recording was killed)", out.bag.string()), "SESSION_DIR",
+                     fmt::format("an indexed bag: run `rosbag reindex {}` first", out.bag.string()));
+  } catch (const rosbag::BagException& e) {
+    throw InputError(fmt::format("'{}' is not a readable bag: {}", out.bag.string(), e.what()), "SESSION_DIR",
+                     "a ROS 1 bag written by `freeplay run --record`");
+  }
+  rosbag::View view(bag);
+  bool first = true;
+  for (const auto& m : view) {
+    const auto topic = m.getTopic();
+    const double t = sandtray_time(m.getTime());
+    ++out.topic_counts[topic];
+    out.topic_types[topic] = m.getDataType();
+    if (first) out.start_s = t;
+    first = false;
+    out.end_s = std::max(out.end_s, t);
+    if (topic == topics::kEvents) {
+      const auto text = m.instantiate<msg::String>();
+      const auto json = nlohmann::json::parse(std_string(text->data));
+      RecordedEvent e;
+      e.tick = json.at("tick").get<double>();
+      e.event.t = json.at("t").get<double>();
+      e.event.source = json.at("source").get<std::string>();
+      e.event.type = json.at("type").get<std::string>();
+      e.event.data = json.value("data", nlohmann::json());
+      out.events.push_back(std::move(e));
+    } else if (topic == topics::kTf) {
+      const auto tf = m.instantiate<msg::TFMessage>();
+      for (const auto& x : tf->transforms) {
+        const auto child = std_string(x.child_frame_id);
+        if (child.rfind("touch", 0) == 0 || child.find('_') != std::string::npos) continue;
+        out.item_positions[sandtray_time(x.header.stamp)][child] = Vec2(x.transform.translation.x, x.transform.translation.y);
+      }
+    } else if (topic == topics::kZones) {
+      const auto markers = m.instantiate<msg::MarkerArray>();
+      std::vector<RecordedZone> zones;
+      for (const auto& marker : markers->markers) {
+        if (marker.action != msg::Marker::ADD) continue;
+        RecordedZone z;
+        z.colour = std_string(marker.ns).substr(std::string("sandbox_zone_").size());
+        for (std::size_t i = 0; i + 1 < marker.points.size(); ++i) z.polygon.emplace_back(marker.points[i].x, marker.points[i].y);
+        z.area_m2 = std::abs(signed_area(z.polygon));
+        zones.push_back(std::move(z));
+      }
+      out.zones.emplace_back(t, std::move(zones));
+    } else if (topic == topics::kAnnotations) {
+      out.annotations_yaml = std_string(m.instantiate<msg::String>()->data);
+    } else if (topic == topics::kInteractionEvents) {
+      out.interaction_events.push_back(std_string(m.instantiate<msg::String>()->data));
+    }
+  }
+  return out;
+}
+
+nlohmann::json recompute_metrics(const SessionRecording& rec) {
+  double freeplay_start = 0.0;
+  double duration = std::nan("");
+  bool child_robot = false;
+  std::set<std::string> seats;
+  for (const auto& [tick, e] : rec.events) {
+    if (e.source == "protocol" && e.type == "stage" && e.data.value("stage", "") == "freeplay") freeplay_start = e.t;
+    if (e.source == "protocol" && e.type == "freeplay_ended") duration = e.data.value("duration_s", std::nan(""));
+    if (e.source == "robot") child_robot = true;
+    if (e.source.rfind("child.", 0) == 0) seats.insert(e.source.substr(6));
+  }
+  nlohmann::json metrics;
+  const double minutes = std::max(duration / 60.0, 1e-9);
+
+  if (!rec.annotations_yaml.empty()) {
+    const auto annotations = agents::parse_pinsoro_yaml(rec.annotations_yaml, rec.bag.string() + ":/freeplay/annotations");
+    auto shares = [&](const std::string& seat, const agents::ChildTimeline& timeline) {
+      for (const auto axis : agents::kAxes) {
+        const auto s = agents::label_shares(timeline, axis);
+        for (std::size_t i = 0; i < agents::label_count(axis); ++i) {
+          metrics["label_share"][seat][std::string(agents::label_name(axis, i))] = s[i];
+        }
+      }
+    };
+    if (annotations.purple) shares("purple", *annotations.purple);
+    if (annotations.yellow) shares("yellow", *annotations.yellow);
+    if (annotations.yellow) child_robot = false;
+  }
+
+  auto position_at = [&](double tick, const std::string& item) -> Vec2 {
+    const auto it = rec.item_positions.find(tick);
+    if (it == rec.item_positions.end() || !it->second.contains(item)) {
+      throw InputError(fmt::format("no /tf pose of '{}' at t = {} s", item, tick), "/tf", "a complete recording");
+    }
+    return it->second.at(item);
+  };
+  auto zone_at = [&](double tick, const Vec2& p) -> std::string {
+    const std::vector<RecordedZone>* zones = nullptr;
+    for (const auto& [t, z] : rec.zones) {
+      if (t <= tick + 1e-9) zones = &z;
+    }
+    if (zones == nullptr) return "";
+    const RecordedZone* best = nullptr;
+    double best_area = std::numeric_limits<double>::infinity();
+    for (const auto& zone : *zones) {
+      if (zone.polygon.size() >= 3 && zone.area_m2 < best_area && point_in_polygon(zone.polygon, p)) {
+        best = &zone;
+        best_area = zone.area_m2;
+      }
+    }
+    return best != nullptr ? best->colour : "";
+  };
+  auto mover_of = [](const nlohmann::json& data) -> std::string {
+    if (data.value("holder", "") == "robot") return "robot";
+    const int finger = data.value("finger", 0);
+    if (finger >= 1 && finger <= agents::kFingersPerChild) return "purple";
+    if (finger > agents::kFingersPerChild && finger <= 2 * agents::kFingersPerChild) return "yellow";
+    return "";
+  };
+
+  struct History {
+    Vec2 grabbed_at = Vec2::Zero();
+    std::string zone_at_grab;
+    std::string last_mover;
+    double last_move_t = -1e9;
+  };
+  std::map<std::string, History> history;
+  std::map<std::string, int> touches;
+  std::map<std::string, int> item_moves;
+  std::map<std::string, int> actions;
+  std::map<std::string, int> interaction;
+  int robot_item_moves = 0;
+  int taken_by_robot = 0;
+  int taken_by_child = 0;
+  int zone_transitions = 0;
+  int moves_started = 0;
+  int moves_succeeded = 0;
+  int moves_failed = 0;
+  int moves_cancelled = 0;
+  double awaiting = -1.0;
+  std::vector<double> latencies;
+  bool in_freeplay = false;
+  for (const auto& [tick, e] : rec.events) {
+    const double t = tick - freeplay_start;
+    if (e.source == "protocol" && e.type == "stage") in_freeplay = e.data.value("stage", "") == "freeplay";
+    if (e.source.rfind("child.", 0) == 0 && e.type == "touch_down") ++touches[e.source.substr(6)];
+    if (e.type == "interaction_event") ++interaction[e.data.value("message", "")];
+    if (e.source == "robot") {
+      // The loop's `t` of the tick that decided the action (observers see it after the tray step).
+      const double loop_t = static_cast<double>(std::lround(t / kTickS) - 1) * kTickS;
+      std::string action;
+      if (e.type == "move_goal") action = "move", ++moves_started;
+      if (e.type == "look_at") action = "look";
+      if (e.type == "point_at") action = "point";
+      if (e.type == "cancel") action = "cancel";
+      if (e.type == "say" && in_freeplay) action = "say";
+      if (!action.empty()) {
+        ++actions[action];
+        if (awaiting >= 0) {
+          latencies.push_back(loop_t - awaiting);
+          awaiting = -1.0;
+        }
+      }
+      if (e.type == "move_result") {
+        const auto status = e.data.value("status", "");
+        if (status == "succeeded") ++moves_succeeded;
+        else if (status == "preempted") ++moves_cancelled;
+        else ++moves_failed;
+      }
+    }
+    if (e.type == "item_grabbed") {
+      const auto item = e.data.value("item", "");
+      const auto mover = mover_of(e.data);
+      auto& h = history[item];
+      h.grabbed_at = position_at(tick, item);
+      h.zone_at_grab = zone_at(tick, h.grabbed_at);
+      const bool recently_other = !h.last_mover.empty() && h.last_mover != mover && t - h.last_move_t < kTakenWindowS;
+      bool shared_with_robot = false;
+      bool shared_with_child = false;
+      for (const auto& other : e.data.value("shared_with", nlohmann::json::array())) {
+        if (other == "robot") shared_with_robot = true; else shared_with_child = true;
+      }
+      if (mover == "robot" && (shared_with_child || (recently_other && h.last_mover != "robot"))) ++taken_by_robot;
+      if (mover != "robot" && (shared_with_robot || (recently_other && h.last_mover == "robot"))) ++taken_by_child;
+    }
+    if (e.type == "item_released") {
+      const auto item = e.data.value("item", "");
+      const auto mover = mover_of(e.data);
+      auto& h = history[item];
+      const Vec2 at = position_at(tick, item);
+      if ((at - h.grabbed_at).norm() < kMinMoveM) continue;
+      h.last_mover = mover;
+      h.last_move_t = t;
+      if (zone_at(tick, at) != h.zone_at_grab) ++zone_transitions;
+      if (mover == "robot") {
+        ++robot_item_moves;
+      } else {
+        ++item_moves[mover];
+        awaiting = t;
+      }
+    }
+  }
+  int child_touches = 0;
+  int child_moves = 0;
+  for (const auto& seat : {"purple", "yellow"}) {
+    if (!seats.contains(seat) && !(std::string(seat) == "purple")) continue;
+    if (std::string(seat) == "yellow" && child_robot) continue;
+    child_touches += touches[seat];
+    child_moves += item_moves[seat];
+    metrics["child"][seat]["touches_per_min"] = touches[seat] / minutes;
+    metrics["child"][seat]["item_moves_per_min"] = item_moves[seat] / minutes;
+  }
+  metrics["child_touches_per_min"] = child_touches / minutes;
+  metrics["child_item_moves_per_min"] = child_moves / minutes;
+  metrics["zone_transitions"] = zone_transitions;
+  if (child_robot) {
+    int total = 0;
+    for (const char* type : {"move", "look", "point", "say", "cancel"}) {
+      metrics["robot_actions"][type] = actions[type];
+      total += actions[type];
+    }
+    metrics["robot_actions_per_min"] = total / minutes;
+    metrics["robot_item_moves_per_min"] = robot_item_moves / minutes;
+    metrics["items_taken_by_robot_from_child"] = taken_by_robot;
+    metrics["items_taken_by_child_from_robot"] = taken_by_child;
+    metrics["robot_response_latency_s"] = mean_or_nan(latencies);
+    metrics["planner"]["moves_started"] = moves_started;
+    metrics["planner"]["success_rate"] =
+        moves_started > 0 ? static_cast<double>(moves_succeeded) / moves_started : std::nan("");
+    metrics["planner"]["moves_failed"] = moves_failed;
+    metrics["planner"]["moves_cancelled"] = moves_cancelled;
+  }
+  nlohmann::json extra;
+  extra["events"] = rec.events.size();
+  extra["interaction_events"] = interaction;
+  extra["bag_duration_s"] = rec.end_s - rec.start_s;
+  extra["complete"] = !rec.annotations_yaml.empty();
+  return {{"duration_s", duration}, {"metrics", metrics}, {"extra", extra}};
+}
+
+std::map<std::string, double> flatten_numbers(const nlohmann::json& json, const std::string& prefix) {
+  std::map<std::string, double> out;
+  if (json.is_object()) {
+    for (const auto& [key, value] : json.items()) {
+      auto inner = flatten_numbers(value, prefix.empty() ? key : prefix + "." + key);
+      out.insert(inner.begin(), inner.end());
+    }
+  } else if (json.is_number()) {
+    out[prefix] = json.get<double>();
+  } else if (json.is_null() && !prefix.empty()) {
+    out[prefix] = std::nan("");  // nlohmann writes NaN as null
+  }
+  return out;
+}
+
+std::vector<MetricComparison> compare_with_record(const nlohmann::json& recomputed, const nlohmann::json& record) {
+  auto replayed = flatten_numbers(recomputed.value("metrics", nlohmann::json::object()), "metrics");
+  replayed["duration_s"] = recomputed.value("duration_s", std::nan(""));
+  auto recorded = flatten_numbers(record.value("metrics", nlohmann::json::object()), "metrics");
+  if (record.contains("duration_s")) recorded["duration_s"] = record["duration_s"].get<double>();
+  std::vector<MetricComparison> out;
+  for (const auto& [name, value] : replayed) {
+    MetricComparison c;
+    c.name = name;
+    c.replayed = value;
+    const auto it = recorded.find(name);
+    c.recorded = it != recorded.end() ? it->second : std::nan("");
+    c.equal = it != recorded.end() && (c.replayed == c.recorded || (std::isnan(c.replayed) && std::isnan(c.recorded)));
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
+}  // namespace freeplay::recording

@@ -1,0 +1,20 @@
+#include "freeplay/recording/ros_messages.hpp"
+
+#include <cmath>
+
+namespace freeplay::recording {
+
+ros::Time ros_time(double t) {
+  const double ns = std::round(t * 1e9);
+  const auto total = static_cast<std::int64_t>(kEpochS) * 1000000000LL + static_cast<std::int64_t>(ns);
+  ros::Time stamp;
+  stamp.fromNSec(static_cast<std::uint64_t>(total));
+  return stamp;
+}
+
+double sandtray_time(const ros::Time& stamp) {
+  const auto ns = static_cast<std::int64_t>(stamp.toNSec()) - static_cast<std::int64_t>(kEpochS) * 1000000000LL;
+  return static_cast<double>(ns) * 1e-9;
+}
+
+}  // namespace freeplay::recording

@@ -1,0 +1,385 @@
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <opencv2/imgproc.hpp>
+
+#include "freeplay/core/error.hpp"
+#include "freeplay/recording/bag_recorder.hpp"
+#include "freeplay/recording/camera_topics.hpp"
+#include "freeplay/recording/replay.hpp"
+#include "freeplay/recording/ros_messages.hpp"
+#include "freeplay/runner/episode.hpp"
+#include "freeplay/sim/sandtray.hpp"
+
+using namespace freeplay;
+using namespace freeplay::recording;
+
+namespace {
+
+const runner::SharedModels& models() {
+  static const runner::SharedModels m = runner::SharedModels::load_default();
+  return m;
+}
+
+// The tiny protocol of the brief: greeting 1 s, tutorial 1 s, free play 10 s, debriefing 1 s.
+runner::Scenario tiny(const std::string& condition, const std::string& extra = "") {
+  return runner::scenario_from_document(parse_yaml(
+      fmt::format("name: tiny\ncondition: {}\nrecord: true\n"
+                  "protocol: {{greeting_s: 1, tutorial_s: 1, freeplay_cap_s: 10, debriefing_s: 1}}\n{}",
+                  condition, extra),
+      "tiny.yaml"));
+}
+
+std::filesystem::path fresh_dir(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("freeplay-recording-" + name);
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+// A synthetic colour frame that changes with time (smooth, so JPEG keeps it close).
+cv::Mat synthetic_rgb(double t, int width = 64, int height = 48) {
+  cv::Mat rgb(height, width, CV_8UC3);
+  for (int r = 0; r < height; ++r) {
+    for (int c = 0; c < width; ++c) {
+      rgb.at<cv::Vec3b>(r, c) = cv::Vec3b(static_cast<unsigned char>(c * 3), static_cast<unsigned char>(r * 4),
+                                          static_cast<unsigned char>(static_cast<int>(t * 10) % 200));
+    }
+  }
+  return rgb;
+}
+
+cv::Mat synthetic_depth(double t, int width = 32, int height = 24) {
+  cv::Mat depth(height, width, CV_32FC1);
+  for (int r = 0; r < height; ++r) {
+    for (int c = 0; c < width; ++c) depth.at<float>(r, c) = static_cast<float>(0.5 + 0.01 * c + 0.001 * r + 0.0001 * t);
+  }
+  depth.at<float>(0, 0) = std::numeric_limits<float>::quiet_NaN();
+  return depth;
+}
+
+stage::FramePack pack(const std::string& camera, double t, bool depth) {
+  stage::FramePack f;
+  f.camera = camera;
+  f.stamp = t;
+  f.rgb = synthetic_rgb(t);
+  f.K = {64, 48, 50.0, 50.0, 32.0, 24.0};
+  if (depth) {
+    f.depth_m = synthetic_depth(t);
+    f.K_depth = {32, 24, 25.0, 25.0, 16.0, 12.0};
+  }
+  f.sandtray_T_camera_optical.translation() = Eigen::Vector3d(-0.1, 0.02, 0.03);
+  return f;
+}
+
+// Feeds the recorder synthetic camera frames (camera_purple at 30 Hz with depth) and remembers item poses.
+struct SyntheticCameras final : runner::EpisodeObserver {
+  runner::FrameSink* sink = nullptr;
+  std::map<double, std::map<std::string, Vec2>> items;
+  double last_t = 0.0;
+  int frames = 0;
+  void observe(const runner::EpisodeSnapshot& s) override {
+    for (const auto& item : s.tray->items()) items[s.t][item.name] = item.pose.position();
+    // Three frames per 10 Hz tick, at the tick and one and two thirds before it.
+    for (int k = 2; k >= 0; --k) {
+      const double t = s.t - k * (0.1 / 3.0);
+      if (t <= last_t + 1e-9) continue;
+      sink->write(pack("camera_purple", t, true));
+      ++frames;
+    }
+    last_t = s.t;
+  }
+};
+
+struct Recorded {
+  std::filesystem::path run_dir;
+  runner::EpisodeResult result;
+  std::map<double, std::map<std::string, Vec2>> items;
+  int frames = 0;
+};
+
+Recorded record_episode(const std::string& name, const std::string& condition) {
+  Recorded out;
+  out.run_dir = fresh_dir(name);
+  const auto scenario = tiny(condition);
+  runner::EpisodeObservers observers;
+  auto recorder = std::make_unique<BagRecorder>(out.run_dir / "sessions", scenario.recording);
+  auto cameras = std::make_unique<SyntheticCameras>();
+  cameras->sink = recorder.get();
+  auto* cams = cameras.get();
+  observers.push_back(std::move(recorder));
+  observers.push_back(std::move(cameras));
+  const std::atomic<bool> stop{false};
+  out.result = runner::run_episode(scenario, 7, models(), stop, observers, {&scenario, "tiny-0000", 7});
+  out.items = cams->items;
+  out.frames = cams->frames;
+  return out;
+}
+
+const Recorded& child_robot() {
+  static const Recorded r = record_episode("cr", "child-robot");
+  return r;
+}
+
+std::filesystem::path bag_path(const Recorded& r) { return r.run_dir / "sessions" / "tiny-0000" / "freeplay.bag"; }
+
+bool have_python_rosbag() { return std::system("/usr/bin/python3 -c 'import rosbag' >/dev/null 2>&1") == 0; }
+
+}  // namespace
+
+TEST(BagRecorder, WritesTheSessionFolderAndTheRecordField) {
+  const auto& r = child_robot();
+  ASSERT_FALSE(r.result.aborted);
+  const auto dir = r.run_dir / "sessions" / "tiny-0000";
+  EXPECT_TRUE(std::filesystem::exists(dir / "freeplay.bag"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "freeplay.bag.active"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "freeplay.annotations.freeplay-sim.yaml"));
+  EXPECT_EQ(r.result.record.value("recording", ""), "sessions/tiny-0000");
+  const auto experiment = YAML::LoadFile((dir / "experiment.yaml").string());
+  EXPECT_EQ(experiment["condition"].as<std::string>(), "childrobot");
+  EXPECT_EQ(experiment["purple-participant"]["age"].as<int>(),
+            r.result.record["children"]["purple"]["age"].get<int>());
+  EXPECT_EQ(experiment["purple-participant"]["id"].as<std::string>(), "tiny-0000-p2");
+  EXPECT_FALSE(experiment["yellow-participant"].IsDefined());
+  EXPECT_FALSE(experiment["issues"].IsDefined());
+  EXPECT_TRUE(experiment["markers"].IsMap());
+  EXPECT_GT(experiment["timestamp"].as<std::uint64_t>(), 1500000000ULL * 1000000000ULL);
+}
+
+TEST(BagRecorder, TopicsTypesAndRatesAreTheRealOnes) {
+  const auto& r = child_robot();
+  const auto rec = read_session(bag_path(r));
+  const std::map<std::string, std::string> expected = {
+      {"/tf", "tf2_msgs/TFMessage"},
+      {"/footprints", "visualization_msgs/MarkerArray"},
+      {"/zones", "visualization_msgs/MarkerArray"},
+      {"/sandtray/background/image/compressed", "sensor_msgs/CompressedImage"},
+      {"/camera_purple/rgb/image_raw/compressed", "sensor_msgs/CompressedImage"},
+      {"/camera_purple/rgb/camera_info", "sensor_msgs/CameraInfo"},
+      {"/camera_purple/depth/image_raw/compressedDepth", "sensor_msgs/CompressedImage"},
+      {"/camera_purple/depth/camera_info", "sensor_msgs/CameraInfo"},
+      {"/joint_states", "sensor_msgs/JointState"},
+      {"/freeplay/events", "std_msgs/String"},
+      {"/freeplay/annotations", "std_msgs/String"},
+      {"/speech", "std_msgs/String"},
+      {"/sandtray/signals/start_freeplay", "std_msgs/Empty"}};
+  for (const auto& [topic, type] : expected) {
+    ASSERT_TRUE(rec.topic_types.contains(topic)) << topic;
+    EXPECT_EQ(rec.topic_types.at(topic), type) << topic;
+  }
+  const double duration = r.result.simulated_s;  // 13 s of protocol
+  auto near_rate = [&](const std::string& topic, double hz) {
+    const double expected_count = hz * duration;
+    EXPECT_NEAR(static_cast<double>(rec.topic_counts.at(topic)), expected_count, 0.05 * expected_count) << topic;
+  };
+  near_rate("/camera_purple/rgb/image_raw/compressed", 30);
+  near_rate("/camera_purple/depth/image_raw/compressedDepth", 30);
+  near_rate("/camera_purple/rgb/camera_info", 30);
+  near_rate("/joint_states", 10);
+  near_rate("/tf", 20 + 10);  // game + others at 10 Hz each, camera optical frames at 10 Hz
+  EXPECT_EQ(rec.topic_counts.at("/footprints"), 1U);
+  EXPECT_EQ(rec.topic_counts.at("/freeplay/annotations"), 1U);
+  EXPECT_EQ(rec.topic_counts.at("/sandtray/background/image/compressed"), rec.topic_counts.at("/zones"));
+  EXPECT_LE(static_cast<double>(rec.topic_counts.at("/sandtray/background/image/compressed")), 4.0 * duration + 1);
+  EXPECT_EQ(rec.events.size(), r.result.events.size());  // every event of the log
+}
+
+TEST(BagRecorder, CameraFramesDecodeToWhatWasWritten) {
+  const auto& r = child_robot();
+  rosbag::Bag bag(bag_path(r).string());
+  rosbag::View colour(bag, rosbag::TopicQuery("/camera_purple/rgb/image_raw/compressed"));
+  int checked = 0;
+  for (const auto& m : colour) {
+    const auto image = m.instantiate<msg::CompressedImage>();
+    EXPECT_EQ(std_string(image->format), "rgb8; jpeg compressed bgr8");
+    EXPECT_EQ(std_string(image->header.frame_id), "camera_purple_rgb_optical_frame");
+    const double t = sandtray_time(image->header.stamp);
+    cv::Mat diff;
+    cv::absdiff(decode_colour(*image), synthetic_rgb(t), diff);
+    EXPECT_LT(cv::mean(diff)[0] + cv::mean(diff)[1] + cv::mean(diff)[2], 6.0);  // JPEG q90 on a smooth image
+    if (++checked == 5) break;
+  }
+  EXPECT_EQ(checked, 5);
+  rosbag::View depth(bag, rosbag::TopicQuery("/camera_purple/depth/image_raw/compressedDepth"));
+  const auto image = depth.begin()->instantiate<msg::CompressedImage>();
+  EXPECT_EQ(std_string(image->format), "16UC1; compressedDepth");
+  ASSERT_GT(image->data.size(), 12U);
+  for (int i = 0; i < 12; ++i) EXPECT_EQ(image->data[static_cast<std::size_t>(i)], 0) << "ConfigHeader byte " << i;
+  EXPECT_EQ(image->data[12], 0x89);  // PNG signature after the 12-byte ConfigHeader
+  EXPECT_EQ(image->data[13], 'P');
+  const cv::Mat mm = decode_compressed_depth(*image);
+  const cv::Mat expected = synthetic_depth(sandtray_time(image->header.stamp));
+  EXPECT_EQ(mm.at<std::uint16_t>(0, 0), 0);  // NaN → no reading
+  for (int r2 = 0; r2 < mm.rows; ++r2) {
+    for (int c = (r2 == 0 ? 1 : 0); c < mm.cols; ++c) {
+      ASSERT_EQ(mm.at<std::uint16_t>(r2, c), std::lround(static_cast<double>(expected.at<float>(r2, c)) * 1000.0));
+    }
+  }
+  rosbag::View info(bag, rosbag::TopicQuery("/camera_purple/rgb/camera_info"));
+  const auto ci = info.begin()->instantiate<msg::CameraInfo>();
+  EXPECT_EQ(ci->width, 64U);
+  EXPECT_DOUBLE_EQ(ci->K[0], 50.0);
+  EXPECT_EQ(std_string(ci->distortion_model), "plumb_bob");
+}
+
+TEST(BagRecorder, TfItemPosesEqualTheSandtray) {
+  const auto& r = child_robot();
+  const auto rec = read_session(bag_path(r));
+  std::size_t compared = 0;
+  for (const auto& [t, items] : r.items) {
+    const auto it = rec.item_positions.find(t);
+    ASSERT_NE(it, rec.item_positions.end()) << t;
+    for (const auto& [name, p] : items) {
+      ASSERT_TRUE(it->second.contains(name)) << name;
+      EXPECT_EQ(it->second.at(name), p) << name << " at " << t;
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 100U);
+}
+
+TEST(Replay, RecomputesIdenticalMetrics) {
+  const auto& r = child_robot();
+  const auto recomputed = recompute_metrics(read_session(bag_path(r)));
+  const auto comparison = compare_with_record(recomputed, r.result.record);
+  EXPECT_GT(comparison.size(), 30U);
+  for (const auto& c : comparison) EXPECT_TRUE(c.equal) << c.name << ": bag " << c.replayed << " vs record " << c.recorded;
+  EXPECT_TRUE(recomputed["extra"]["complete"].get<bool>());
+}
+
+TEST(Replay, RecomputesIdenticalMetricsChildChild) {
+  const auto r = record_episode("cc", "child-child");
+  const auto recomputed = recompute_metrics(read_session(bag_path(r)));
+  const auto comparison = compare_with_record(recomputed, r.result.record);
+  EXPECT_GT(comparison.size(), 30U);
+  for (const auto& c : comparison) EXPECT_TRUE(c.equal) << c.name << ": bag " << c.replayed << " vs record " << c.recorded;
+  const auto experiment = YAML::LoadFile((r.run_dir / "sessions/tiny-0000/experiment.yaml").string());
+  EXPECT_EQ(experiment["condition"].as<std::string>(), "childchild");
+  EXPECT_EQ(experiment["yellow-participant"]["id"].as<std::string>(), "tiny-0000-y1");
+}
+
+TEST(BagRecorder, PythonRosbagAndRosbagInfoReadTheBag) {
+  if (!have_python_rosbag()) GTEST_SKIP() << "Debian's python3-rosbag is not installed (scripts/setup.sh)";
+  const auto bag = bag_path(child_robot()).string();
+  const auto script = fmt::format(
+      "/usr/bin/python3 -c \"import rosbag, sys; b = rosbag.Bag('{}'); "
+      "n = sum(1 for _ in b.read_messages(topics=['/tf'])); "
+      "t = b.get_type_and_topic_info().topics; "
+      "sys.exit(0 if n > 100 and t['/zones'].msg_type == 'visualization_msgs/MarkerArray' else 1)\"",
+      bag);
+  EXPECT_EQ(std::system(script.c_str()), 0);
+  EXPECT_EQ(std::system(fmt::format("rosbag info {} >/dev/null", bag).c_str()), 0);
+}
+
+namespace {
+
+// Stops the episode after `ticks` snapshots (Ctrl-C), or copies the open bag (a kill) at that tick.
+struct Interrupter final : runner::EpisodeObserver {
+  std::atomic<bool>* stop = nullptr;
+  std::filesystem::path copy_from, copy_to;
+  int ticks = 0;
+  int seen = 0;
+  void observe(const runner::EpisodeSnapshot&) override {
+    if (++seen != ticks) return;
+    if (stop != nullptr) stop->store(true);
+    if (!copy_to.empty()) std::filesystem::copy_file(copy_from, copy_to);
+  }
+};
+
+}  // namespace
+
+TEST(BagRecorder, CtrlCClosesTheBagAndMarksTheSessionIncomplete) {
+  const auto dir = fresh_dir("abort");
+  const auto scenario = tiny("child-robot");
+  std::atomic<bool> stop{false};
+  runner::EpisodeObservers observers;
+  observers.push_back(std::make_unique<BagRecorder>(dir / "sessions", scenario.recording));
+  auto interrupter = std::make_unique<Interrupter>();
+  interrupter->stop = &stop;
+  interrupter->ticks = 60;  // mid free play
+  observers.push_back(std::move(interrupter));
+  const auto result = runner::run_episode(scenario, 7, models(), stop, observers, {&scenario, "tiny-0000", 7});
+  EXPECT_TRUE(result.aborted);
+  const auto session = dir / "sessions" / "tiny-0000";
+  ASSERT_TRUE(std::filesystem::exists(session / "freeplay.bag"));
+  const auto rec = read_session(session);
+  EXPECT_GT(rec.topic_counts.at("/tf"), 100U);
+  EXPECT_TRUE(rec.annotations_yaml.empty());
+  EXPECT_FALSE(recompute_metrics(rec)["extra"]["complete"].get<bool>());
+  const auto experiment = YAML::LoadFile((session / "experiment.yaml").string());
+  ASSERT_TRUE(experiment["issues"].IsSequence());
+  EXPECT_NE(experiment["issues"][0].as<std::string>().find("incomplete"), std::string::npos);
+}
+
+TEST(BagRecorder, AKilledRecordingIsReindexable) {
+  const auto dir = fresh_dir("kill");
+  const auto scenario = tiny("child-robot", "");
+  auto settings = scenario.recording;
+  settings.chunk_kb = 16;
+  std::atomic<bool> stop{false};
+  runner::EpisodeObservers observers;
+  observers.push_back(std::make_unique<BagRecorder>(dir / "sessions", settings));
+  auto interrupter = std::make_unique<Interrupter>();
+  interrupter->ticks = 80;
+  interrupter->copy_from = dir / "sessions" / "tiny-0000" / "freeplay.bag.active";
+  interrupter->copy_to = dir / "killed.bag";
+  observers.push_back(std::move(interrupter));
+  runner::run_episode(scenario, 7, models(), stop, observers, {&scenario, "tiny-0000", 7});
+  // The copy is what a killed process leaves: no index. Our reader says to reindex.
+  try {
+    read_session(dir / "killed.bag");
+    ADD_FAILURE() << "an unindexed bag must be refused";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("rosbag reindex"), std::string::npos) << e.what();
+  }
+  if (std::system("command -v rosbag >/dev/null 2>&1") != 0) GTEST_SKIP() << "the rosbag tool is not installed";
+  ASSERT_EQ(std::system(fmt::format("cd {} && rosbag reindex killed.bag >/dev/null 2>&1", dir.string()).c_str()), 0);
+  const auto rec = read_session(dir / "killed.bag");
+  EXPECT_GT(rec.topic_counts.at("/tf"), 50U);  // everything up to the last complete chunk
+}
+
+TEST(BagRecorder, UnwritableFolderIsAClearErrorBeforeTheEpisode) {
+  const auto dir = fresh_dir("unwritable");
+  std::ofstream(dir / "blocker") << "a file, not a folder";
+  BagRecorder recorder(dir / "blocker" / "sessions");
+  const auto scenario = tiny("child-robot");
+  try {
+    recorder.begin({&scenario, "tiny-0000", 7});
+    FAIL() << "begin must refuse an unwritable folder";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("session folder"), std::string::npos) << e.what();
+  }
+}
+
+TEST(CameraTopics, RealNamesAndAClearErrorForOthers) {
+  EXPECT_EQ(camera_topics("camera_yellow").depth_image, "/camera_yellow/depth/image_raw/compressedDepth");
+  EXPECT_EQ(camera_topics("env_camera").rgb_image, "/env_camera/qhd/image_color/compressed");
+  EXPECT_EQ(camera_topics("env_camera").rgb_info, "/env_camera/qhd/camera_info");
+  EXPECT_EQ(camera_topics("CameraTop").rgb_image, "/naoqi_driver/camera/front/image_raw/compressed");
+  EXPECT_THROW(camera_topics("camera_green"), InputError);
+}
+
+TEST(RecordSchema, AcceptsTrueAndAMapAndRefusesBadValues) {
+  EXPECT_TRUE(tiny("child-robot").record);
+  const auto mapped = runner::scenario_from_document(
+      parse_yaml("name: t\ncondition: child-robot\nrecord: {jpeg_quality: 75, compression: lz4}\n", "t.yaml"));
+  EXPECT_TRUE(mapped.record);
+  EXPECT_EQ(mapped.recording.jpeg_quality, 75);
+  EXPECT_EQ(mapped.recording.compression, "lz4");
+  EXPECT_EQ(mapped.recording.png_level, 3);
+  const auto off = runner::scenario_from_document(
+      parse_yaml("name: t\ncondition: child-robot\nrecord: {bag: false}\n", "t.yaml"));
+  EXPECT_FALSE(off.record);
+  for (const char* bad : {"record: 3", "record: {jpeg_quality: 200}", "record: {codec: x}", "record: [true]",
+                          "record: {compression: zip}"}) {
+    try {
+      runner::scenario_from_document(parse_yaml(fmt::format("name: t\ncondition: child-robot\n{}\n", bad), "t.yaml"));
+      ADD_FAILURE() << bad << " must be refused";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("record"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("t.yaml:3"), std::string::npos) << e.what();
+    }
+  }
+}
