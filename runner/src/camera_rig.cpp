@@ -65,15 +65,12 @@ stage::ChildRole role_of(const std::string& seat) {
   throw InputError("unknown seat '" + seat + "'", "seat", "purple, yellow");
 }
 
-/// The colour and depth image sizes one scenario camera produces.
+/// The colour and depth image sizes of one scenario camera (the renderer checks both, even without depth).
 std::pair<cv::Size, cv::Size> image_sizes(const stage::StageModel& model, const CameraStream& camera) {
   const auto& spec = model.camera(camera.name);
   const cv::Size color(camera.width, camera.height);
   const bool depth_follows_color = spec.depth.width == spec.color.width && spec.depth.height == spec.color.height;
-  const cv::Size depth = !camera.depth ? cv::Size(0, 0)
-                         : depth_follows_color ? color
-                                               : cv::Size(spec.depth.width, spec.depth.height);
-  return {color, depth};
+  return {color, depth_follows_color ? color : cv::Size(spec.depth.width, spec.depth.height)};
 }
 
 }  // namespace

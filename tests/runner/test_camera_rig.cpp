@@ -34,7 +34,7 @@ Scenario short_scenario(const std::string& condition, const std::string& cameras
   return scenario_from_document(parse_yaml(text, "test.yaml"));
 }
 
-struct Frame {
+struct KeptFrame {
   std::string camera;
   double stamp = 0;
   cv::Size rgb;
@@ -47,13 +47,13 @@ struct Frame {
 
 // Keeps what it is handed.
 struct CollectingSink final : FrameSink {
-  std::vector<Frame> frames;
+  std::vector<KeptFrame> frames;
   std::string gl_renderer;
   int gl_told = 0;
   bool keep_images = false;
   void write(const stage::FramePack& f) override {
     EXPECT_EQ(gl_told, 1) << "the GL renderer is told before the first frame";
-    Frame kept{f.camera, f.stamp, f.rgb.size(), f.depth_m.size(), {}, {}, f.sandtray_T_camera_optical, f.K_depth};
+    KeptFrame kept{f.camera, f.stamp, f.rgb.size(), f.depth_m.size(), {}, {}, f.sandtray_T_camera_optical, f.K_depth};
     if (keep_images) {
       kept.depth_m = f.depth_m.clone();
       kept.rgb_image = f.rgb.clone();
@@ -114,7 +114,7 @@ TEST(CameraRig, FramesArriveAtTheirRatesWithoutChangingTheEpisode) {
   EXPECT_EQ(plain.events.to_jsonl(), filmed.events.to_jsonl()) << "rendering never changes the episode";
   EXPECT_DOUBLE_EQ(plain.simulated_s, filmed.simulated_s);
 
-  std::map<std::string, std::vector<const Frame*>> by_camera;
+  std::map<std::string, std::vector<const KeptFrame*>> by_camera;
   for (const auto& f : sink.frames) by_camera[f.camera].push_back(&f);
   ASSERT_EQ(by_camera.size(), 2u);
   const double simulated = filmed.simulated_s;
@@ -156,7 +156,7 @@ TEST(CameraRig, DepthIsMetricAtTheScreen) {
   const std::atomic<bool> stop{false};
   run_episode(s, 3, models(), stop, observers, {&s, "t-0", 3});
   ASSERT_FALSE(sink.frames.empty());
-  const Frame& f = sink.frames.front();  // greeting: blank screen, hands at rest
+  const KeptFrame& f = sink.frames.front();  // greeting: blank screen, hands at rest
   // The screen centre seen by the camera: its planar depth is its z in the optical frame.
   const Eigen::Vector3d centre(0.300, -0.1675, 0.0);
   const Eigen::Vector3d in_camera = f.pose.inverse() * centre;
@@ -186,7 +186,9 @@ TEST(StageMirror, ScreenFollowsTheGameAtMostFourTimesPerSecond) {
   options.max_width = 200;
   options.max_height = 150;
   stage::Renderer renderer(model, options);
-  const stage::RenderRequest request{.rgb = true, .depth = false, .width = 200, .height = 150};
+  stage::RenderRequest request;
+  request.width = 200;
+  request.height = 150;
   mirror.pose(snapshot);
   EXPECT_EQ(mirror.screen_updates(), 1);
   const cv::Mat before = renderer.render(mirror.stage(), "top_view", request).rgb.clone();
@@ -329,7 +331,7 @@ TEST(CameraSchema, BadRenderingAndCameraValuesNameTheAllowedValues) {
   msg = schema_error(head + "cameras: [{name: env_camera}, {name: env_camera}]\n");
   EXPECT_NE(msg.find("listed twice"), std::string::npos) << msg;
   msg = schema_error("name: x\ncondition: child-child\ncameras: [{name: CameraTop}]\n");
-  EXPECT_NE(msg.find("test.yaml:3:19"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("test.yaml:3:18"), std::string::npos) << msg;
   EXPECT_NE(msg.find("absent in child-child"), std::string::npos) << msg;
   const auto s = scenario_from_document(
       parse_yaml(head + "rendering: {backend: egl, preset: pretty}\ncameras: [{name: env_camera, video: true}]\n",
