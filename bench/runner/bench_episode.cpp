@@ -74,20 +74,25 @@ void run_with_cameras(benchmark::State& state, const std::string& cameras) {
     wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     simulated += result.simulated_s;
     frames += sink.frames;
-    for (const auto& [camera, seconds] : result.record["cameras"]["wall_render_s"].items()) {
-      render_wall += seconds.get<double>();
+    if (result.record.contains("cameras")) {
+      for (const auto& [camera, seconds] : result.record["cameras"]["wall_render_s"].items()) {
+        render_wall += seconds.get<double>();
+      }
     }
-    gl_renderer = result.record.value("gl_renderer", std::string());
+    if (result.record["gl_renderer"].is_string()) gl_renderer = result.record["gl_renderer"].get<std::string>();
   }
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   state.counters["sim_s_per_wall_s"] = simulated / wall;
-  state.counters["frames_per_wall_s"] = static_cast<double>(frames) / wall;
-  state.counters["render_share"] = render_wall / wall;  // fraction of the wall time spent in Renderer::render
+  if (!scenario.cameras.empty()) {
+    state.counters["frames_per_wall_s"] = static_cast<double>(frames) / wall;
+    state.counters["render_share"] = render_wall / wall;  // fraction of the wall time spent in Renderer::render
+  }
   state.counters["peak_rss_mb"] = static_cast<double>(usage.ru_maxrss) / 1024.0;
   state.SetLabel(gl_renderer);
 }
 
+void BM_ChildRobotAsocialShortNoCameras(benchmark::State& state) { run_with_cameras(state, "[]"); }
 void BM_ChildRobotAsocialEnvCamera30Hz(benchmark::State& state) {
   run_with_cameras(state, "[{name: env_camera, rate_hz: 30, width: 960, height: 540}]");
 }
@@ -107,5 +112,6 @@ void BM_ChildRobotSocialEpisode(benchmark::State& state) { run_scenario(state, "
 BENCHMARK(BM_ChildChildEpisode)->Unit(benchmark::kMillisecond)->Iterations(10);
 BENCHMARK(BM_ChildRobotAsocialEpisode)->Unit(benchmark::kMillisecond)->Iterations(10);
 BENCHMARK(BM_ChildRobotSocialEpisode)->Unit(benchmark::kMillisecond)->Iterations(10);
+BENCHMARK(BM_ChildRobotAsocialShortNoCameras)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_ChildRobotAsocialEnvCamera30Hz)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_ChildRobotAsocialThreeCameras30Hz)->Unit(benchmark::kMillisecond)->Iterations(1);

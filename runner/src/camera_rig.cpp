@@ -217,6 +217,7 @@ void CameraRig::observe(const EpisodeSnapshot& snapshot) {
 }
 
 void CameraRig::end(EpisodeResult& result) {
+  if (cameras_.empty()) return;
   if (!gl_renderer_.empty()) result.record["gl_renderer"] = gl_renderer_;
   auto& cameras = result.record["cameras"];
   for (std::size_t i = 0; i < cameras_.size(); ++i) {
