@@ -7,7 +7,7 @@ find_package(fmt REQUIRED)
 find_package(spdlog REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(box2d 2.4 REQUIRED)
-find_package(OpenCV 4.6 REQUIRED COMPONENTS core imgproc imgcodecs)
+find_package(OpenCV 4.6 REQUIRED COMPONENTS core imgproc imgcodecs videoio)
 find_package(mujoco 2.2 REQUIRED)
 # Debian's mujoco::mujoco names /usr/include/libqhull_r/, which exists only with libqhull-dev (not needed by
 # MuJoCo's public headers): drop include folders that do not exist so CMake accepts the target.

@@ -73,10 +73,10 @@ std::vector<std::uint8_t> encode_compressed_depth(const cv::Mat& depth_m, int pn
   }
   std::vector<std::uint8_t> png;
   cv::imencode(".png", mm, png, {cv::IMWRITE_PNG_COMPRESSION, png_level});
-  std::vector<std::uint8_t> data(sizeof(CompressedDepthConfigHeader));
   const CompressedDepthConfigHeader header;
+  std::vector<std::uint8_t> data(sizeof header + png.size());
   std::memcpy(data.data(), &header, sizeof header);
-  data.insert(data.end(), png.begin(), png.end());
+  std::memcpy(data.data() + sizeof header, png.data(), png.size());
   return data;
 }
 

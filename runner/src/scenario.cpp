@@ -84,6 +84,12 @@ std::shared_ptr<const Schema> scenario_schema(const ScenarioVocabulary& vocabula
       with_default("width", S::integer(16, 4096), "960"),
       with_default("height", S::integer(16, 4096), "540"),
       with_default("depth", S::boolean(), "false"),
+      with_default("video", S::boolean(), "false", "write videos/<episode>/<name>.mp4 (mp4v, fps = rate_hz)"),
+  });
+  const auto rendering = S::map({
+      optional("backend", S::enumeration({"osmesa", "egl"}), "GL provider; default $MUJOCO_GL, else osmesa"),
+      with_default("preset", S::enumeration({"fast", "pretty"}), "fast",
+                   "fast: no MSAA/shadows/reflections/skybox; pretty: 4x MSAA, shadows, skybox"),
   });
   return S::map({
       required("name", S::string(), "short identifier"),
@@ -97,6 +103,7 @@ std::shared_ptr<const Schema> scenario_schema(const ScenarioVocabulary& vocabula
       with_default("perception", perception, "{}"),
       with_default("protocol", protocol, "{}"),
       with_default("cameras", S::list(camera), "[]"),
+      with_default("rendering", rendering, "{}", "how the cameras are rendered"),
       with_default("record",
                    S::one_of({S::boolean(),
                               S::map({with_default("bag", S::boolean(), "true", "write the ROS bag"),
@@ -125,6 +132,26 @@ Scenario scenario_from_document(YamlDocument document, const std::vector<std::st
     errors.add(InputError("the robot takes the yellow place in child-robot scenarios", "children.yellow",
                           "remove children.yellow, or use condition: child-child",
                           location_of(root["children"]["yellow"], document.file)));
+  }
+  for (std::size_t i = 0; errors.empty() && i < root["cameras"].size(); ++i) {
+    const YAML::Node name = root["cameras"][i]["name"];
+    for (std::size_t j = 0; j < i; ++j) {
+      if (root["cameras"][j]["name"].Scalar() == name.Scalar()) {
+        errors.add(InputError(fmt::format("camera '{}' is listed twice", name.Scalar()), fmt::format("cameras[{}].name", i),
+                              "each camera once", location_of(name, document.file)));
+      }
+    }
+  }
+  if (errors.empty() && condition == "child-child") {
+    for (std::size_t i = 0; i < root["cameras"].size(); ++i) {
+      const YAML::Node name = root["cameras"][i]["name"];
+      if (name.Scalar() == "CameraTop" || name.Scalar() == "CameraBottom") {
+        errors.add(InputError(fmt::format("'{}' is a camera of the robot's head, absent in child-child scenarios",
+                                          name.Scalar()),
+                              fmt::format("cameras[{}].name", i), "camera_purple, camera_yellow, env_camera",
+                              location_of(name, document.file)));
+      }
+    }
   }
   errors.throw_if_any();
 
@@ -155,8 +182,10 @@ Scenario scenario_from_document(YamlDocument document, const std::vector<std::st
   s.protocol.debriefing_s = root["protocol"]["debriefing_s"].as<double>();
   for (const auto& c : root["cameras"]) {
     s.cameras.push_back({c["name"].as<std::string>(), c["rate_hz"].as<double>(), c["width"].as<int>(),
-                         c["height"].as<int>(), c["depth"].as<bool>()});
+                         c["height"].as<int>(), c["depth"].as<bool>(), c["video"].as<bool>()});
   }
+  if (root["rendering"]["backend"].IsDefined()) s.rendering.backend = root["rendering"]["backend"].as<std::string>();
+  s.rendering.preset = root["rendering"]["preset"].as<std::string>();
   if (const auto& r = root["record"]; r.IsMap()) {
     s.record = r["bag"].as<bool>();
     s.recording = {r["jpeg_quality"].as<int>(), r["png_level"].as<int>(), r["chunk_kb"].as<int>(),

@@ -1,5 +1,6 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <fstream>
@@ -32,8 +33,10 @@ runner::Scenario tiny(const std::string& condition, const std::string& extra = "
       "tiny.yaml"));
 }
 
+// One folder per test process: ctest runs the tests of this file in parallel processes.
 std::filesystem::path fresh_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("freeplay-recording-" + name);
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("freeplay-recording-" + name + "-" + std::to_string(static_cast<long>(::getpid())));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

@@ -37,6 +37,13 @@ struct CameraStream {
   int width = 960;       ///< pixels
   int height = 540;      ///< pixels
   bool depth = false;    ///< also read back depth
+  bool video = false;    ///< write `videos/<episode>/<name>.mp4`
+};
+
+/// How the cameras are rendered (`rendering:`).
+struct RenderingSettings {
+  std::string backend;          ///< "osmesa" | "egl"; empty: $MUJOCO_GL, else osmesa
+  std::string preset = "fast";  ///< "fast" | "pretty"
 };
 
 /// How an episode is recorded (`record:` true or a map; docs/recording.md).
@@ -79,6 +86,7 @@ struct Scenario {
   double gaze_noise_deg = 5.0;           ///< perception: head-pose noise (SD)
   Protocol protocol;                     ///< stage durations
   std::vector<CameraStream> cameras;     ///< camera output (none: no rendering)
+  RenderingSettings rendering;           ///< GL backend and visual preset of the cameras
   bool record = false;                   ///< write a ROS bag per episode
   RecordSettings recording;              ///< how (when `record`)
   YAML::Node source;                     ///< the validated document with defaults filled in
