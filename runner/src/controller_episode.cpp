@@ -111,6 +111,8 @@ class SelfCollisionChecker {
     colliding_.assign(pairs_.size(), false);
   }
 
+  /// Names ("geom/geom") of every pair that collided so far.
+  const std::set<std::string>& hit() const { return hit_; }
   /// Number of pairs checked.
   std::size_t pairs() const { return pairs_.size(); }
 
@@ -120,7 +122,12 @@ class SelfCollisionChecker {
     any = false;
     for (std::size_t i = 0; i < pairs_.size(); ++i) {
       const bool now = penetration(d, pairs_[i].first, pairs_[i].second) < -kPenetrationM;
-      if (now && !colliding_[i]) ++onsets;
+      if (now && !colliding_[i]) {
+        ++onsets;
+        const char* a = mj_id2name(model_, mjOBJ_GEOM, pairs_[i].first);
+        const char* b = mj_id2name(model_, mjOBJ_GEOM, pairs_[i].second);
+        hit_.insert(fmt::format("{}/{}", a != nullptr ? a : "?", b != nullptr ? b : "?"));
+      }
       colliding_[i] = now;
       any = any || now;
     }
@@ -149,6 +156,7 @@ class SelfCollisionChecker {
   const mjModel* model_;
   std::vector<std::pair<int, int>> pairs_;
   std::vector<bool> colliding_;
+  std::set<std::string> hit_;
 };
 
 double mean_of(const std::vector<double>& v) {
@@ -196,6 +204,7 @@ class ControllerEpisode {
       const char* name = mj_id2name(m, mjOBJ_JOINT, j);
       trace_.qpos_names[static_cast<std::size_t>(m->jnt_qposadr[j])] = name != nullptr ? name : "";
     }
+    set_profile_speeds();
     expand_targets();
   }
 
@@ -261,25 +270,44 @@ class ControllerEpisode {
     return out;
   }
 
-  Eigen::Vector3d fingertip() const { return stage_.site_position(stage_model_->nao().fingertip_site); }
-
-  // One 20 ms control cycle: moves the reference towards the goal at the speed limit, commands it, steps physics.
-  void control_tick() {
+  // The profile speed of each joint: speed_fraction × its velocity limit, and no faster than torque_fraction × its
+  // effort limit can drive against the joint's damping.
+  void set_profile_speeds() {
     const mjModel* m = stage_model_->mj();
+    const auto& nao = stage_model_->nao();
     for (int j = 0; j < kNaoJointCount; ++j) {
       const auto ju = static_cast<std::size_t>(j);
-      const double step = spec_.speed_fraction * kVelocityLimit[ju] * kControlDtS;
-      reference_[ju] += std::clamp(goal_[ju] - reference_[ju], -step, step);
+      const double damping = m->dof_damping[nao.dof[ju]];
+      double speed = spec_.speed_fraction * kVelocityLimit[ju];
+      if (damping > 0.0) speed = std::min(speed, spec_.torque_fraction * kEffortLimit[ju] / damping);
+      profile_speed_[ju] = speed;
     }
-    nao_.set_joint_targets(reference_);
+  }
+
+  void advance_reference(double dt) {
+    for (std::size_t j = 0; j < reference_.size(); ++j) {
+      const double step = profile_speed_[j] * dt;
+      reference_[j] += std::clamp(goal_[j] - reference_[j], -step, step);
+    }
+  }
+
+  Eigen::Vector3d fingertip() const { return stage_.site_position(stage_model_->nao().fingertip_site); }
+
+  // One 20 ms control cycle: moves the reference towards the goal at the profile speed in 2 ms increments (the
+  // DCM's interpolation between motion cycles), commands it with gravity feed-forward, steps physics.
+  void control_tick() {
     if (dynamic_) {
       for (int s = 0; s < kControlSteps; ++s) {
+        advance_reference(kPhysicsDtS);
+        nao_.set_joint_targets(reference_);
         stage_.step(1);
         ++steps_;
         sample(stage_.data(), nullptr);
         if (steps_ % spec_.trace_interval_steps == 0) checkpoint();
       }
     } else {
+      advance_reference(kControlDtS);
+      nao_.set_joint_targets(reference_);
       stage_.update_kinematics();
       const auto q = nao_.joint_positions();
       NaoJointVector velocity{};
@@ -293,7 +321,6 @@ class ControllerEpisode {
     bool any = false;
     collision_onsets_ += collisions_.update(stage_.data(), any);
     if (any) collision_time_s_ += kControlDtS;
-    (void)m;
     ++control_ticks_;
   }
 
@@ -305,10 +332,15 @@ class ControllerEpisode {
       const auto ju = static_cast<std::size_t>(j);
       const double q = d->qpos[nao.qpos[ju]];
       const double v = kinematic_velocity != nullptr ? (*kinematic_velocity)[ju] : d->qvel[nao.dof[ju]];
-      peak_velocity_fraction_ = std::max(peak_velocity_fraction_, std::fabs(v) / kVelocityLimit[ju]);
+      if (std::fabs(v) / kVelocityLimit[ju] > peak_velocity_fraction_) {
+        peak_velocity_fraction_ = std::fabs(v) / kVelocityLimit[ju];
+        peak_velocity_at_ = fmt::format("{} at {:.3f} s", stage::kNaoJointNames[ju], time());
+      }
       const int actuator = nao.actuator[ju];
-      if (dynamic_ && actuator >= 0 && j != kRHipYawPitch) {
-        peak_torque_fraction_ = std::max(peak_torque_fraction_, std::fabs(d->actuator_force[actuator]) / kEffortLimit[ju]);
+      if (dynamic_ && actuator >= 0 && j != kRHipYawPitch &&
+          std::fabs(d->actuator_force[actuator]) / kEffortLimit[ju] > peak_torque_fraction_) {
+        peak_torque_fraction_ = std::fabs(d->actuator_force[actuator]) / kEffortLimit[ju];
+        peak_torque_at_ = fmt::format("{} at {:.3f} s", stage::kNaoJointNames[ju], time());
       }
       if (!rad_joint(j)) continue;
       const int joint = nao.joint[ju];
@@ -441,6 +473,7 @@ class ControllerEpisode {
         const double settle_s = settle(start, [&] { return joint_error_to_goal() <= spec_.settle_tolerance_rad; });
         const double error_deg = gaze_error_deg(p);
         gaze_errors_deg_.push_back(error_deg);
+        if (!gaze.clamped) unclamped_gaze_errors_deg_.push_back(error_deg);
         out.update({{"look", t.point}, {"clamped", gaze.clamped}, {"gaze_error_deg", error_deg}});
         finish_settle(out, settle_s);
         break;
@@ -537,6 +570,7 @@ class ControllerEpisode {
     metrics["fingertip_error_mm"]["reachable_max"] = max_of(reachable_errors_mm_);
     metrics["gaze_error_deg"]["mean"] = mean_of(gaze_errors_deg_);
     metrics["gaze_error_deg"]["max"] = max_of(gaze_errors_deg_);
+    metrics["gaze_error_deg"]["unclamped_max"] = max_of(unclamped_gaze_errors_deg_);
     metrics["sync"]["error_mm_mean"] = mean_of(sync_mean_mm_);
     metrics["sync"]["error_mm_max"] = max_of(sync_max_mm_);
     metrics["sync"]["lag_ms"] = mean_of(sync_lag_ms_);
@@ -560,9 +594,13 @@ class ControllerEpisode {
             {"robot_mode", spec_.mode},
             {"planner", scenario_.planner},
             {"controller", {{"speed_fraction", spec_.speed_fraction},
+                            {"torque_fraction", spec_.torque_fraction},
                             {"trace_interval_steps", spec_.trace_interval_steps},
                             {"self_collision_pairs", collisions_.pairs()}}},
+            {"self_collisions", collisions_.hit()},
             {"joint_limit_margin_joint", limit_margin_joint_},
+            {"peak_velocity_at", peak_velocity_at_},
+            {"peak_torque_at", peak_torque_at_},
             {"trace_hash", fmt::format("{:016x}", trace_.hash())},
             {"trace_checkpoints", trace_.checkpoints.size()},
             {"trace_machine", trace_.machine},
@@ -587,6 +625,7 @@ class ControllerEpisode {
   NaoJointVector goal_{};
   NaoJointVector reference_{};
   NaoJointVector previous_q_{};
+  NaoJointVector profile_speed_{};
   Eigen::Vector3d commanded_tip_ = Eigen::Vector3d::Zero();
   long steps_ = 0;
   long control_ticks_ = 0;
@@ -603,6 +642,7 @@ class ControllerEpisode {
   std::vector<double> fingertip_errors_mm_;
   std::vector<double> reachable_errors_mm_;
   std::vector<double> gaze_errors_deg_;
+  std::vector<double> unclamped_gaze_errors_deg_;
   std::vector<double> settle_times_s_;
   std::vector<double> placement_errors_mm_;
   std::vector<double> sync_mean_mm_;
@@ -615,6 +655,8 @@ class ControllerEpisode {
   std::string limit_margin_joint_;
   double peak_velocity_fraction_ = 0.0;
   double peak_torque_fraction_ = 0.0;
+  std::string peak_velocity_at_;
+  std::string peak_torque_at_;
   double tracking_sq_ = 0.0;
   long tracking_n_ = 0;
   double tracking_max_ = 0.0;

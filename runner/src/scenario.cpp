@@ -84,6 +84,9 @@ std::shared_ptr<const Schema> controller_schema(const ScenarioVocabulary& vocabu
       with_default("speed_fraction", S::number(0.01, 50.0), "0.3",
                    "joint speed of the commanded profile as a fraction of the Nao's velocity limits (> 1 exceeds "
                    "them deliberately)"),
+      with_default("torque_fraction", S::number(0.01, 50.0), "0.5",
+                   "profile speed at most this fraction of each joint's effort limit / its damping (> 1 exceeds the "
+                   "motors' efforts deliberately)"),
       with_default("trace_interval_steps", S::integer(1, 1000000), "50", "golden-trace checkpoint every N steps"),
       with_default("settle_tolerance_m", S::number(1e-5, 0.1), "0.003"),
       with_default("settle_tolerance_rad", S::number(1e-5, 1.0), "0.01"),
@@ -111,6 +114,7 @@ void check_kind_sections(const YAML::Node& root, const std::string& kind,
       errors.add(InputError("controller scenarios run the child-robot stage", "condition",
                             "child-robot, or leave it out", location_of(root["condition"], file)));
     }
+    if (!root["controller"].IsDefined() || !root["controller"].IsMap()) return;
     const YAML::Node targets = root["controller"]["targets"];
     if (!targets.IsDefined() || !targets.IsSequence()) return;
     for (std::size_t i = 0; i < targets.size(); ++i) {
@@ -142,6 +146,7 @@ ControllerSpec controller_from(const YAML::Node& node) {
   ControllerSpec c;
   c.mode = node["mode"].as<std::string>();
   c.speed_fraction = node["speed_fraction"].as<double>();
+  c.torque_fraction = node["torque_fraction"].as<double>();
   c.trace_interval_steps = node["trace_interval_steps"].as<int>();
   c.settle_tolerance_m = node["settle_tolerance_m"].as<double>();
   c.settle_tolerance_rad = node["settle_tolerance_rad"].as<double>();

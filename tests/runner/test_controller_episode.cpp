@@ -80,12 +80,12 @@ TEST(ControllerEpisode, PosturesHaveNoSelfCollisions) {
 TEST(ControllerEpisode, DefaultGainsStayWithinTheNaoLimits) {
   const auto r = run(controller_scenario(
       "    - point: [0.10, -0.02]\n    - point: [0.31, -0.10]\n    - look: [0.55, -0.30, 0.0]\n"
-      "    - look: [0.05, -0.05, 0.0]\n    - posture: StandInit\n"));
+      "    - look: [0.30, -0.60, 0.25]\n    - posture: StandInit\n"));
   EXPECT_GT(metric(r.record, "peak_velocity_fraction"), 0.05);
   EXPECT_LE(metric(r.record, "peak_velocity_fraction"), 1.0);
   EXPECT_GT(metric(r.record, "peak_torque_fraction"), 0.0);
-  EXPECT_LE(metric(r.record, "peak_torque_fraction"), 1.0);
-  EXPECT_LT(metric(r.record, "gaze_error_deg.max"), 10.0);
+  EXPECT_LE(metric(r.record, "peak_torque_fraction"), 1.0) << r.record["peak_torque_at"];
+  EXPECT_LT(metric(r.record, "gaze_error_deg.unclamped_max"), 5.0);
 }
 
 analysis::RunData as_run(const nlohmann::json& record, const std::string& dir) {
@@ -99,8 +99,9 @@ analysis::RunData as_run(const nlohmann::json& record, const std::string& dir) {
 TEST(ControllerEpisode, TooAggressiveGainDegradesTheMetricsAndFailsCheck) {
   const std::string targets = "    - point: [0.10, -0.02]\n    - point: [0.31, -0.10]\n    - look: [0.55, -0.30, 0.0]\n";
   const auto good = run(controller_scenario(targets));
-  const auto bad = run(controller_scenario(targets, "  speed_fraction: 6\n"));
-  EXPECT_GT(metric(bad.record, "peak_velocity_fraction"), 1.0);
+  const auto bad = run(controller_scenario(targets, "  speed_fraction: 3\n  torque_fraction: 10\n"));
+  // The servos saturate (±5 N·m, far above the motors' efforts) before the joints reach their speed limits.
+  EXPECT_GT(metric(bad.record, "peak_velocity_fraction"), metric(good.record, "peak_velocity_fraction"));
   EXPECT_GT(metric(bad.record, "peak_torque_fraction"), 1.0);
   EXPECT_GT(metric(bad.record, "tracking_error_rad.max"), metric(good.record, "tracking_error_rad.max"));
 
@@ -137,7 +138,7 @@ TEST(ControllerTrace, IdenticalBetweenRunsAndChangesWithTheGain) {
   const std::string targets = "    - point: [0.20, -0.05]\n    - look: [0.3, -0.3, 0.0]\n";
   const auto a = run(controller_scenario(targets));
   const auto b = run(controller_scenario(targets));
-  const auto c = run(controller_scenario(targets, "  speed_fraction: 0.31\n"));
+  const auto c = run(controller_scenario(targets, "  torque_fraction: 0.52\n"));
   EXPECT_EQ(a.record["trace_hash"], b.record["trace_hash"]);
   EXPECT_EQ(a.record["metrics"]["trace_hash"], a.record["trace_hash"]);
   EXPECT_NE(a.record["trace_hash"], c.record["trace_hash"]);
@@ -154,7 +155,8 @@ TEST(ControllerTrace, IdenticalBetweenRunsAndChangesWithTheGain) {
 }
 
 TEST(ControllerTrace, RoundTripsAndDiffsWithTolerance) {
-  const auto a = run(controller_scenario("    - point: [0.20, -0.05]\n"), 5);
+  const auto a = run(controller_scenario("    - point: [0.20, -0.05]\n    - wait: 1\n"), 5);
+  ASSERT_GT(a.trace.checkpoints.size(), 10u);
   const auto parsed = parse_trace(trace_jsonl(a.trace), "a.jsonl");
   ASSERT_EQ(parsed.checkpoints.size(), a.trace.checkpoints.size());
   EXPECT_EQ(parsed.hash(), a.trace.hash());

@@ -35,12 +35,12 @@ struct Gate {
   std::string variant;                          ///< suite variant id (the scenario name for plain suites)
   std::string metric;                           ///< dotted metric name
   double expected = 0.0;                        ///< expected mean
-  std::string expected_text;                    ///< expected text (Equals gates)
   BandKind kind = BandKind::Relative;           ///< band kind
   double width = 0.0;                           ///< abs or rel width (unused for NotWorseThan)
   Direction direction = Direction::HigherIsBetter;  ///< for NotWorseThan
   double confidence = 0.95;                     ///< CI level for NotWorseThan
   SourceLocation where;                         ///< where the gate stands in its file
+  std::string expected_text = {};               ///< expected text (Equals gates)
 
   /// The band in words, e.g. "±25 %", "±0.5", "not lower than (95 % CI)".
   std::string band_text() const;
@@ -90,7 +90,7 @@ struct GateResult {
   bool passed = true;    ///< within the band
   double miss = 0.0;     ///< how far outside the band (0 when passed), in the metric's units
   std::string verdict;   ///< one line: value, expected, band and by how much it misses
-  std::string text;      ///< the first differing (or common) text value (Equals gates)
+  std::string text = {};  ///< the first differing (or common) text value (Equals gates)
 };
 
 /// The outcome of every gate.

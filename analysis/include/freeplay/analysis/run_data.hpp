@@ -17,7 +17,7 @@ struct EpisodeValues {
   int episode = 0;                        ///< index within the variant
   std::uint64_t seed = 0;                 ///< the episode's root seed (same seed = same synthetic children)
   std::map<std::string, double> metrics;  ///< dotted metric name → value
-  std::map<std::string, std::string> texts;  ///< dotted name → string leaf of `metrics` (e.g. metrics.trace_hash)
+  std::map<std::string, std::string> texts = {};  ///< dotted name → string leaf of `metrics` (e.g. metrics.trace_hash)
 };
 
 /// The finished episodes of one run folder.

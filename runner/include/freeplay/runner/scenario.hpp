@@ -68,6 +68,8 @@ struct ControllerSpec {
   std::string mode = "dynamic";             ///< "dynamic" (simulated actuators) | "kinematic"
   double speed_fraction = 0.3;              ///< joint speed of the commanded profile, as a fraction of each joint's
                                             ///< velocity limit (ALMotion's angleInterpolationWithSpeed fraction)
+  double torque_fraction = 0.5;             ///< and no faster than this fraction of each joint's effort limit can
+                                            ///< drive against the joint's damping
   int trace_interval_steps = 50;            ///< golden-trace checkpoint every N physics steps (2 ms each)
   double settle_tolerance_m = 0.003;        ///< fingertip distance to its commanded position that counts as settled
   double settle_tolerance_rad = 0.01;       ///< joint error that counts as settled (look and posture targets)
