@@ -26,7 +26,8 @@ std::shared_ptr<const Schema> gate_schema() {
       with_default("ci", Schema::number(0.5, 0.9999), "0.95", "level of the run's CI of the mean"),
   });
   return Schema::map({
-      required("expected", Schema::number(-1e15, 1e15), "expected mean"),
+      optional("expected", Schema::number(-1e15, 1e15), "expected mean (required unless 'equals')"),
+      optional("equals", Schema::string(), "expected text of a text metric (e.g. metrics.trace_hash); no band"),
       optional("abs", width, "allowed |mean − expected|"),
       optional("rel", width, "allowed |mean − expected| / |expected|"),
       optional("not_worse_than", not_worse, "fail only when the CI lies wholly on the worse side"),
@@ -81,8 +82,35 @@ GateResult evaluate(const Gate& gate, const std::vector<double>& values, int res
       }
       break;
     }
+    case BandKind::Equals: break;  // text gates: evaluate_text
   }
   return r;
+}
+
+GateResult evaluate_text(const Gate& gate, const std::vector<std::string>& values) {
+  GateResult r;
+  r.gate = gate;
+  r.n = static_cast<int>(values.size());
+  r.mean = kNaN;
+  r.ci = {kNaN, kNaN};
+  const auto differing = std::find_if(values.begin(), values.end(), [&](const std::string& v) { return v != gate.expected_text; });
+  r.passed = differing == values.end();
+  r.miss = static_cast<double>(std::count_if(values.begin(), values.end(),
+                                             [&](const std::string& v) { return v != gate.expected_text; }));
+  r.text = r.passed ? gate.expected_text : *differing;
+  r.verdict = r.passed ? fmt::format("{} (n {}) equals the expected value", gate.expected_text, r.n)
+                       : fmt::format("{} of {} episodes differ: {} instead of {}", static_cast<int>(r.miss), r.n,
+                                     r.text, gate.expected_text);
+  return r;
+}
+
+std::vector<std::string> text_values(const std::vector<EpisodeValues>& episodes, const std::string& metric) {
+  std::vector<std::string> out;
+  for (const auto& e : episodes) {
+    const auto it = e.texts.find(metric);
+    if (it != e.texts.end()) out.push_back(it->second);
+  }
+  return out;
 }
 
 }  // namespace
@@ -94,6 +122,7 @@ std::string Gate::band_text() const {
     case BandKind::NotWorseThan:
       return fmt::format("not {} ({} % CI)", direction == Direction::HigherIsBetter ? "lower" : "higher",
                          std::lround(confidence * 100.0));
+    case BandKind::Equals: return "equal";
   }
   return "?";
 }
@@ -136,6 +165,23 @@ Baseline parse_baseline(const YamlDocument& document) {
       gate.variant = variant;
       gate.metric = metric;
       gate.where = location_of(m->first, document.file);
+      if (node["equals"]) {
+        gate.kind = BandKind::Equals;
+        gate.expected_text = node["equals"].as<std::string>();
+        if (node["expected"] || node["abs"] || node["rel"] || node["not_worse_than"]) {
+          errors.add(InputError("an 'equals' gate takes no expected value or band",
+                                fmt::format("variants.{}.{}", variant, metric), "equals: TEXT alone",
+                                location_of(node, document.file)));
+          continue;
+        }
+        baseline.gates.push_back(std::move(gate));
+        continue;
+      }
+      if (!node["expected"]) {
+        errors.add(InputError("missing required key 'expected'", fmt::format("variants.{}.{}.expected", variant, metric),
+                              "a number (or 'equals: TEXT' for a text metric)", location_of(node, document.file)));
+        continue;
+      }
       gate.expected = node["expected"].as<double>();
       int bands = 0;
       if (node["abs"]) {
@@ -218,6 +264,26 @@ Baseline make_baseline(const RunData& run, const BaselineOptions& options, const
       }
       baseline.gates.push_back(std::move(gate));
     }
+    if (!options.texts) continue;
+    std::set<std::string> text_names;
+    for (const auto& e : episodes) {
+      for (const auto& [name, value] : e.texts) {
+        if (metric_matches(name, options.metrics)) text_names.insert(name);
+      }
+    }
+    for (const auto& metric : text_names) {
+      const auto values = text_values(episodes, metric);
+      if (values.size() != episodes.size() ||
+          std::any_of(values.begin(), values.end(), [&](const std::string& v) { return v != values.front(); })) {
+        continue;  // differs between episodes (e.g. different seeds): nothing to pin
+      }
+      Gate gate;
+      gate.variant = variant;
+      gate.metric = metric;
+      gate.kind = BandKind::Equals;
+      gate.expected_text = values.front();
+      baseline.gates.push_back(std::move(gate));
+    }
   }
   if (baseline.gates.empty()) {
     throw InputError("the selection holds no metric to gate", "--metric",
@@ -233,7 +299,8 @@ std::string baseline_yaml(const Baseline& baseline) {
       "#   abs: X   passes when |mean - expected| <= X\n"
       "#   rel: R   passes when |mean - expected| <= R * |expected|\n"
       "#   not_worse_than: {direction: higher_is_better|lower_is_better, ci: 0.95}\n"
-      "#            fails only when the run's CI of the mean lies wholly on the worse side of expected\n";
+      "#            fails only when the run's CI of the mean lies wholly on the worse side of expected\n"
+      "#   {equals: TEXT}  a text metric (a golden-trace hash): every episode's value must equal TEXT\n";
   out += "baseline:\n";
   out += fmt::format("  source: {}\n", quoted(baseline.source));
   out += fmt::format("  program_version: {}\n", quoted(baseline.program_version));
@@ -255,6 +322,9 @@ std::string baseline_yaml(const Baseline& baseline) {
                            gate.direction == Direction::HigherIsBetter ? kHigherIsBetter : kLowerIsBetter,
                            number_text(gate.confidence));
         break;
+      case BandKind::Equals:
+        out += fmt::format("    {}: {{equals: {}}}\n", quoted(gate.metric), quoted(gate.expected_text));
+        continue;
     }
     out += fmt::format("    {}: {{expected: {}, {}}}\n", quoted(gate.metric), number_text(gate.expected), band);
   }
@@ -277,7 +347,15 @@ CheckReport check_run(const RunData& run, const Baseline& baseline, int resample
                             fmt::format("{}", fmt::join(run.variants, ", ")), gate.where));
       continue;
     }
-    const auto values = metric_values(run.of_variant(gate.variant), gate.metric);
+    if (gate.kind == BandKind::Equals) {
+      const auto texts = text_values(run.of_variant(gate.variant), gate.metric);
+      if (!texts.empty()) {
+        report.results.push_back(evaluate_text(gate, texts));
+        continue;
+      }
+    }
+    const auto values = gate.kind == BandKind::Equals ? std::vector<double>{}
+                                                      : metric_values(run.of_variant(gate.variant), gate.metric);
     if (values.empty()) {
       std::set<std::string> names;
       for (const auto& e : run.of_variant(gate.variant)) {

@@ -29,6 +29,24 @@ std::map<std::string, double> comparable_metrics(const nlohmann::json& record) {
   return values;
 }
 
+namespace {
+
+void collect_texts(const nlohmann::json& value, const std::string& prefix, std::map<std::string, std::string>& out) {
+  if (value.is_object()) {
+    for (const auto& [key, child] : value.items()) collect_texts(child, prefix + "." + key, out);
+  } else if (value.is_string()) {
+    out[prefix] = value.get<std::string>();
+  }
+}
+
+}  // namespace
+
+std::map<std::string, std::string> comparable_texts(const nlohmann::json& record) {
+  std::map<std::string, std::string> out;
+  collect_texts(record.value("metrics", nlohmann::json::object()), "metrics", out);
+  return out;
+}
+
 RunData run_from_records(const std::vector<nlohmann::json>& records, const std::string& dir) {
   RunData run;
   run.dir = dir;
@@ -39,6 +57,7 @@ RunData run_from_records(const std::vector<nlohmann::json>& records, const std::
     const auto seed = record.find("seed");
     if (seed != record.end() && seed->is_number_unsigned()) e.seed = seed->get<std::uint64_t>();
     e.metrics = comparable_metrics(record);
+    e.texts = comparable_texts(record);
     if (!run.has_variant(e.variant)) run.variants.push_back(e.variant);
     if (run.episodes.empty()) run.program_version = record.value("program_version", std::string{});
     run.episodes.push_back(std::move(e));

@@ -19,6 +19,7 @@
 #include "freeplay/planning/move_executor.hpp"
 #include "freeplay/planning/plan.hpp"
 #include "freeplay/policies/play_policy.hpp"
+#include "freeplay/runner/controller_episode.hpp"
 #include "freeplay/runner/perception_model.hpp"
 #include "freeplay/runner/run_folder.hpp"
 #include "freeplay/runner/sandtray_world.hpp"
@@ -1002,6 +1003,7 @@ EpisodeResult run_episode(const Scenario& scenario, std::uint64_t seed, const Sh
 EpisodeFunction episode_function(const SharedModels& models, ObserverFactory observers, std::filesystem::path run_dir) {
   return [&models, observers = std::move(observers), run_dir = std::move(run_dir)](const EpisodeTask& task,
                                                                                    const std::atomic<bool>& stop) {
+    if (task.variant->scenario.kind == "controller") return run_controller_task(task, models, stop);
     const auto id = RunFolder::episode_file_id(task.variant->id, task.index);
     EpisodeObservers attached = observers ? observers(task.variant->scenario, run_dir) : EpisodeObservers{};
     const EpisodeInfo info{&task.variant->scenario, id, task.seed};

@@ -2,9 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <limits>
 
 #include "freeplay/core/rng.hpp"
+#include "freeplay/stage/nao_description.hpp"
 
 namespace freeplay::runner {
 
@@ -40,6 +42,144 @@ ChildSpec child_from(const YAML::Node& node) {
   spec.attention_span = maybe<double>(node, "attention_span");
   spec.tablet_familiarity = maybe<int>(node, "tablet_familiarity");
   return spec;
+}
+
+// ---- controller scenarios (kind: controller) ----------------------------------------------------------------
+
+/// Keys of the episode-only sections that a controller scenario rejects (the Nao runs alone: no children).
+constexpr std::array<const char*, 4> kEpisodeOnlyKeys = {"children", "robot", "protocol", "perception"};
+
+constexpr const char* kTargetForms =
+    "one of point: [x, y] | look: [x, y, z] | move: {item, to, from} | posture: NAME | wait: S | "
+    "random_points: {count, region}";
+
+std::shared_ptr<const Schema> controller_target_schema(const ScenarioVocabulary& vocabulary) {
+  const auto xy = S::list(S::number(-2.0, 2.0), 2, 2);
+  const auto xyz = S::list(S::number(-3.0, 3.0), 3, 3);
+  const auto move = S::map({
+      required("item", S::enumeration(vocabulary.items)),
+      required("to", xy, "target of the item centre (sandtray x, y, m)"),
+      optional("from", xy, "place the item here first (default: where it is)"),
+  });
+  const auto random_points = S::map({
+      required("count", S::integer(1, 10000)),
+      with_default("region", S::enumeration({"reach", "screen"}), "reach",
+                   "reach: the band the standing Nao reaches; screen: the whole screen"),
+  });
+  std::vector<std::string> postures;
+  for (const auto p : stage::kAllNaoPostures) postures.emplace_back(stage::posture_name(p));
+  // One map with every key optional (exactly one present, checked in check_kind_sections), so that errors inside a
+  // target name the nested key and its allowed values.
+  return S::map({optional("point", xy, "screen point (sandtray x, y, m)"),
+                 optional("look", xyz, "gaze point (sandtray x, y, z, m)"),
+                 optional("move", move, "an item drag through the planner and MoveExecutor"),
+                 optional("posture", S::enumeration(postures)),
+                 optional("wait", S::number(0.0, 600.0), "seconds"),
+                 optional("random_points", random_points, "seeded random screen points")});
+}
+
+std::shared_ptr<const Schema> controller_schema(const ScenarioVocabulary& vocabulary) {
+  return S::map({
+      with_default("mode", S::enumeration({"dynamic", "kinematic"}), "dynamic", "robot simulation mode"),
+      with_default("speed_fraction", S::number(0.01, 50.0), "0.3",
+                   "joint speed of the commanded profile as a fraction of the Nao's velocity limits (> 1 exceeds "
+                   "them deliberately)"),
+      with_default("torque_fraction", S::number(0.01, 50.0), "0.5",
+                   "profile speed at most this fraction of each joint's effort limit / its damping (> 1 exceeds the "
+                   "motors' efforts deliberately)"),
+      with_default("trace_interval_steps", S::integer(1, 1000000), "50", "golden-trace checkpoint every N steps"),
+      with_default("settle_tolerance_m", S::number(1e-5, 0.1), "0.003"),
+      with_default("settle_tolerance_rad", S::number(1e-5, 1.0), "0.01"),
+      with_default("settle_speed_rad_s", S::number(1e-4, 10.0), "0.05"),
+      with_default("hold_s", S::number(0.0, 60.0), "0.2", "time held at a target once settled"),
+      with_default("timeout_s", S::number(0.1, 600.0), "5", "longest time spent on one target"),
+      required("targets", S::list(controller_target_schema(vocabulary), 1), "the target sequence"),
+  });
+}
+
+void check_kind_sections(const YAML::Node& root, const std::string& kind,
+                         const std::vector<std::string>& episode_only_keys, const std::string& file,
+                         ValidationErrors& errors) {
+  if (kind == "controller") {
+    if (!root["controller"].IsDefined()) {
+      errors.add(InputError("a scenario of kind controller needs a 'controller' section", "controller",
+                            "controller: {targets: [...]}", location_of(root, file)));
+    }
+    for (const auto& key : episode_only_keys) {
+      errors.add(InputError(fmt::format("'{}' belongs to episodes with children; controller scenarios drive the Nao "
+                                        "alone (robot mode and gains go in 'controller')", key),
+                            key, "remove it, or use kind: episode", location_of(root[key], file)));
+    }
+    if (root["condition"].IsDefined() && root["condition"].IsScalar() && root["condition"].Scalar() != "child-robot") {
+      errors.add(InputError("controller scenarios run the child-robot stage", "condition",
+                            "child-robot, or leave it out", location_of(root["condition"], file)));
+    }
+    if (!root["controller"].IsDefined() || !root["controller"].IsMap()) return;
+    const YAML::Node targets = root["controller"]["targets"];
+    if (!targets.IsDefined() || !targets.IsSequence()) return;
+    for (std::size_t i = 0; i < targets.size(); ++i) {
+      const YAML::Node target = targets[i];
+      if (target.IsMap() && target.size() == 1) continue;
+      errors.add(InputError(fmt::format("controller target {} needs exactly one key, found {}", i,
+                                        target.IsMap() ? target.size() : 0),
+                            fmt::format("controller.targets[{}]", i), kTargetForms, location_of(target, file)));
+    }
+    return;
+  }
+  if (root["controller"].IsDefined()) {
+    errors.add(InputError("a 'controller' section needs kind: controller", "controller",
+                          "kind: controller, or remove the section", location_of(root["controller"], file)));
+  }
+  if (!root["condition"].IsDefined()) {
+    errors.add(InputError("missing required key 'condition'", "condition", "child-child, child-robot",
+                          location_of(root, file)));
+  }
+}
+
+std::vector<double> numbers_of(const YAML::Node& list) {
+  std::vector<double> out;
+  for (const auto& v : list) out.push_back(v.as<double>());
+  return out;
+}
+
+ControllerSpec controller_from(const YAML::Node& node) {
+  ControllerSpec c;
+  c.mode = node["mode"].as<std::string>();
+  c.speed_fraction = node["speed_fraction"].as<double>();
+  c.torque_fraction = node["torque_fraction"].as<double>();
+  c.trace_interval_steps = node["trace_interval_steps"].as<int>();
+  c.settle_tolerance_m = node["settle_tolerance_m"].as<double>();
+  c.settle_tolerance_rad = node["settle_tolerance_rad"].as<double>();
+  c.settle_speed_rad_s = node["settle_speed_rad_s"].as<double>();
+  c.hold_s = node["hold_s"].as<double>();
+  c.timeout_s = node["timeout_s"].as<double>();
+  for (const auto& t : node["targets"]) {
+    ControllerTarget target;
+    if (t["point"]) {
+      target.kind = ControllerTarget::Kind::Point;
+      target.point = numbers_of(t["point"]);
+    } else if (t["look"]) {
+      target.kind = ControllerTarget::Kind::Look;
+      target.point = numbers_of(t["look"]);
+    } else if (t["move"]) {
+      target.kind = ControllerTarget::Kind::Move;
+      target.item = t["move"]["item"].as<std::string>();
+      target.point = numbers_of(t["move"]["to"]);
+      if (t["move"]["from"]) target.from = numbers_of(t["move"]["from"]);
+    } else if (t["posture"]) {
+      target.kind = ControllerTarget::Kind::Posture;
+      target.posture = t["posture"].as<std::string>();
+    } else if (t["wait"]) {
+      target.kind = ControllerTarget::Kind::Wait;
+      target.seconds = t["wait"].as<double>();
+    } else {
+      target.kind = ControllerTarget::Kind::RandomPoints;
+      target.count = t["random_points"]["count"].as<int>();
+      target.region = t["random_points"]["region"].as<std::string>();
+    }
+    c.targets.push_back(std::move(target));
+  }
+  return c;
 }
 
 }  // namespace
@@ -94,7 +234,10 @@ std::shared_ptr<const Schema> scenario_schema(const ScenarioVocabulary& vocabula
   return S::map({
       required("name", S::string(), "short identifier"),
       with_default("description", S::string(), "\"\""),
-      required("condition", S::enumeration({"child-child", "child-robot"})),
+      with_default("kind", S::enumeration({"episode", "controller"}), "episode",
+                   "episode: a session with children; controller: the Nao alone through a target sequence"),
+      optional("controller", controller_schema(vocabulary), "the target sequence (kind: controller only)"),
+      optional("condition", S::enumeration({"child-child", "child-robot"}), "required for kind: episode"),
       with_default("episodes", S::integer(1, 1000000), "1"),
       with_default("seed", S::integer(0, std::numeric_limits<long long>::max()), "1"),
       with_default("children", children, "{}"),
@@ -126,8 +269,17 @@ Scenario scenario_from_document(YamlDocument document, const std::vector<std::st
   }
   for (const auto& assignment : overrides) apply_override(root, assignment);
   ValidationErrors errors;
+  std::vector<std::string> episode_only_keys;  // present before validation fills in defaults
+  if (root.IsMap()) {
+    for (const char* key : kEpisodeOnlyKeys) {
+      if (root[key].IsDefined()) episode_only_keys.emplace_back(key);
+    }
+  }
   scenario_schema(vocabulary)->validate(root, "", document.file, errors);
-  const std::string condition = root.IsMap() && root["condition"].IsScalar() ? root["condition"].Scalar() : "";
+  const std::string kind = root.IsMap() && root["kind"].IsScalar() ? root["kind"].Scalar() : "episode";
+  if (root.IsMap()) check_kind_sections(root, kind, episode_only_keys, document.file, errors);
+  std::string condition = root.IsMap() && root["condition"].IsScalar() ? root["condition"].Scalar() : "";
+  if (kind == "controller") condition = "controller";  // the Nao alone on the child-robot stage
   if (errors.empty() && condition == "child-robot" && root["children"]["yellow"].IsDefined()) {
     errors.add(InputError("the robot takes the yellow place in child-robot scenarios", "children.yellow",
                           "remove children.yellow, or use condition: child-child",
@@ -159,6 +311,8 @@ Scenario scenario_from_document(YamlDocument document, const std::vector<std::st
   s.file = document.file;
   s.name = root["name"].as<std::string>();
   s.description = root["description"].as<std::string>();
+  s.kind = kind;
+  if (kind == "controller") s.controller = controller_from(root["controller"]);
   s.condition = condition;
   s.episodes = root["episodes"].as<int>();
   s.seed = root["seed"].as<std::uint64_t>();

@@ -20,7 +20,8 @@ namespace freeplay::analysis {
 enum class BandKind {
   Absolute,     ///< |mean − expected| ≤ width
   Relative,     ///< |mean − expected| ≤ width · |expected|
-  NotWorseThan  ///< fails only when the run's CI of the mean lies entirely on the worse side of expected
+  NotWorseThan, ///< fails only when the run's CI of the mean lies entirely on the worse side of expected
+  Equals        ///< a text metric (e.g. a golden-trace hash): every episode's value equals `expected_text`
 };
 
 /// Which way is better, for "not worse than" bands.
@@ -39,6 +40,7 @@ struct Gate {
   Direction direction = Direction::HigherIsBetter;  ///< for NotWorseThan
   double confidence = 0.95;                     ///< CI level for NotWorseThan
   SourceLocation where;                         ///< where the gate stands in its file
+  std::string expected_text = {};               ///< expected text (Equals gates)
 
   /// The band in words, e.g. "±25 %", "±0.5", "not lower than (95 % CI)".
   std::string band_text() const;
@@ -70,6 +72,7 @@ struct BaselineOptions {
                                                     ///< max(3 standard errors, zero_floor)
   std::vector<std::string> metrics;                 ///< glob patterns of the metrics to gate (empty: all)
   std::vector<std::string> variants;                ///< variants to gate (empty: all)
+  bool texts = true;  ///< also gate text metrics (Equals) whose value is the same in every episode of a variant
 };
 
 /// A baseline whose expected values are the run's means; InputError when a filter selects nothing.
@@ -87,6 +90,7 @@ struct GateResult {
   bool passed = true;    ///< within the band
   double miss = 0.0;     ///< how far outside the band (0 when passed), in the metric's units
   std::string verdict;   ///< one line: value, expected, band and by how much it misses
+  std::string text = {};  ///< the first differing (or common) text value (Equals gates)
 };
 
 /// The outcome of every gate.

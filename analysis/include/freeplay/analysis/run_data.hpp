@@ -17,6 +17,7 @@ struct EpisodeValues {
   int episode = 0;                        ///< index within the variant
   std::uint64_t seed = 0;                 ///< the episode's root seed (same seed = same synthetic children)
   std::map<std::string, double> metrics;  ///< dotted metric name → value
+  std::map<std::string, std::string> texts = {};  ///< dotted name → string leaf of `metrics` (e.g. metrics.trace_hash)
 };
 
 /// The finished episodes of one run folder.
@@ -35,6 +36,8 @@ struct RunData {
 /// `duration_s` and the numeric leaves of `metrics` of one episodes.jsonl record, as dotted names.
 std::map<std::string, double> comparable_metrics(const nlohmann::json& record);
 
+/// The string leaves of `metrics` of one episodes.jsonl record, as dotted names (e.g. `metrics.trace_hash`).
+std::map<std::string, std::string> comparable_texts(const nlohmann::json& record);
 /// Builds run data from episodes.jsonl records (`dir` only names the run in messages).
 RunData run_from_records(const std::vector<nlohmann::json>& records, const std::string& dir);
 

@@ -18,6 +18,8 @@ struct ScenarioVocabulary {
   std::vector<std::string> planners = {"astar", "rrtconnect", "prmstar", "rrtstar", "bitstar"};  ///< planners
   std::vector<std::string> cameras = {"camera_purple", "camera_yellow", "env_camera", "CameraTop",
                                       "CameraBottom"};  ///< stage cameras
+  std::vector<std::string> items = {"zebra", "elephant", "ball", "lion", "giraffe", "caravan", "crocodile",
+                                    "hippo", "boy", "girl"};  ///< sandtray items (controller `move` targets)
 };
 
 /// An explicit child profile (absent fields are sampled from the population).
@@ -62,12 +64,44 @@ struct Protocol {
   double debriefing_s = 120;       ///< blank screen, debriefing
 };
 
+/// One step of a controller scenario's target sequence.
+struct ControllerTarget {
+  /// What the step asks of the Nao.
+  enum class Kind { Point, Look, Move, Posture, Wait, RandomPoints };
+  Kind kind = Kind::Wait;                   ///< the step's kind
+  std::vector<double> point;                ///< Point: screen x, y (m); Look: x, y, z (m); Move: target x, y
+  std::string item;                         ///< Move: the item to drag
+  std::optional<std::vector<double>> from;  ///< Move: where the item is placed first (nullopt: where it is)
+  std::string posture;                      ///< Posture: NAOqi posture name
+  double seconds = 0.0;                     ///< Wait: how long to hold still (s)
+  int count = 0;                            ///< RandomPoints: how many points
+  std::string region;                       ///< RandomPoints: "reach" or "screen"
+};
+
+/// The `controller:` section of a scenario of kind `controller`.
+struct ControllerSpec {
+  std::string mode = "dynamic";             ///< "dynamic" (simulated actuators) | "kinematic"
+  double speed_fraction = 0.3;              ///< joint speed of the commanded profile, as a fraction of each joint's
+                                            ///< velocity limit (ALMotion's angleInterpolationWithSpeed fraction)
+  double torque_fraction = 0.5;             ///< and no faster than this fraction of each joint's effort limit can
+                                            ///< drive against the joint's damping
+  int trace_interval_steps = 50;            ///< golden-trace checkpoint every N physics steps (2 ms each)
+  double settle_tolerance_m = 0.003;        ///< fingertip distance to its commanded position that counts as settled
+  double settle_tolerance_rad = 0.01;       ///< joint error that counts as settled (look and posture targets)
+  double settle_speed_rad_s = 0.05;         ///< joint speeds below which the robot counts as still
+  double hold_s = 0.2;                      ///< time held at each target once settled
+  double timeout_s = 5.0;                   ///< longest time spent on one target
+  std::vector<ControllerTarget> targets;    ///< the sequence, in order
+};
+
 /// A validated scenario.
 struct Scenario {
   std::string name;                      ///< short identifier, used in output names
   std::string description;               ///< one line for people
   std::string file;                      ///< where it was loaded from ("" when built in code)
-  std::string condition;                 ///< "child-child" | "child-robot"
+  std::string kind = "episode";          ///< "episode" (a session with children) | "controller" (the Nao alone)
+  ControllerSpec controller;             ///< the controller sequence (kind "controller" only)
+  std::string condition;                 ///< "child-child" | "child-robot" ("controller" for kind controller)
   int episodes = 1;                      ///< episodes to run
   std::uint64_t seed = 1;                ///< root seed; episode i uses SeedSequence(seed).derive("episode/i")
   std::string population = "pinsoro";    ///< population the children are sampled from
