@@ -6,6 +6,8 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <cmath>
+#include <map>
+#include <optional>
 
 #include "freeplay/core/error.hpp"
 #include "freeplay/core/yaml_schema.hpp"

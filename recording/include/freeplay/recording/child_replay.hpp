@@ -37,12 +37,12 @@ class ReplayedChildren final : public runner::ChildActionSource {
  public:
   /// Plays back `recording` (kept by reference: it must outlive this source).
   explicit ReplayedChildren(const RecordedChildren& recording) : recording_(recording) {}
-  /// The recorded actions of `seat` at free-play time `t`; gaze and quitting carry over from earlier ticks.
+  /// The recorded actions of `seat` at free-play time `t` (gaze and quitting as they stand then); past the
+  /// recording, a child that has quit.
   agents::ChildActions actions(const std::string& seat, double t, double dt) override;
 
  private:
   const RecordedChildren& recording_;
-  std::map<std::string, agents::ChildActions> last_;
 };
 
 /// The scenario of a replay: the recorded one with `policy` (empty: the recorded one; a different policy drops the
