@@ -72,7 +72,7 @@ RecordedChildren read_recorded_children(const std::filesystem::path& session) {
   std::map<double, std::map<std::string, HeadRay>> heads;        // snapshot stamp → seat → head ray
   rosbag::View view(bag, rosbag::TopicQuery(std::vector<std::string>{topics::kScenario, topics::kEpisode,
                                                                      topics::kEvents, topics::kTf}));
-  for (const auto& m : view) {
+  for (const auto& m : view) try {
     const auto topic = m.getTopic();
     if (topic == topics::kScenario) {
       out.scenario_yaml = std_string(m.instantiate<msg::String>()->data);
@@ -91,7 +91,8 @@ RecordedChildren read_recorded_children(const std::filesystem::path& session) {
       }
       if (e.source.rfind("child.", 0) == 0) child_events.push_back(std::move(e));
     } else if (topic == topics::kTf) {
-      for (const auto& x : m.instantiate<msg::TFMessage>()->transforms) {
+      const auto tf = m.instantiate<msg::TFMessage>();  // keeps the message alive
+      for (const auto& x : tf->transforms) {
         const auto child = std_string(x.child_frame_id);
         const double stamp = sandtray_time(x.header.stamp);
         const Eigen::Vector3d xyz(x.transform.translation.x, x.transform.translation.y, x.transform.translation.z);
@@ -104,6 +105,10 @@ RecordedChildren read_recorded_children(const std::filesystem::path& session) {
         }
       }
     }
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(fmt::format("'{}': a malformed {} message at {:.3f} s: {}", out.bag.string(), m.getTopic(),
+                                 sandtray_time(m.getTime()), e.what()),
+                     "SESSION_DIR", "a session recorded by freeplay-sim");
   }
   const auto where = out.bag.string();
   if (out.scenario_yaml.empty()) {

@@ -135,7 +135,7 @@ TEST(ChildReplay, BadSessionFoldersGiveClearErrors) {
     bag.open((empty / "freeplay.bag").string(), rosbag::bagmode::Write);
     msg::String text;
     text.data = ros_string("{}");
-    bag.write(topics::kEvents, ros_time(1.0), text);
+    bag.write(topics::kAnnotations, ros_time(1.0), text);
     bag.close();
   }
   try {
@@ -167,7 +167,8 @@ TEST(RobotLinks, LinkFramesEqualTheStageBodiesForTheRecordedJoints) {
   ASSERT_EQ(names.size(), 26U);
   std::map<std::string, std::pair<std::string, Eigen::Isometry3d>> links;  // child → (parent, parent_T_child)
   for (const auto& m : rosbag::View(bag, rosbag::TopicQuery(topics::kTf), stamp, stamp)) {
-    for (const auto& x : m.instantiate<msg::TFMessage>()->transforms) {
+    const auto tf = m.instantiate<msg::TFMessage>();  // keeps the message alive
+      for (const auto& x : tf->transforms) {
       Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
       T.translation() << x.transform.translation.x, x.transform.translation.y, x.transform.translation.z;
       T.linear() = Eigen::Quaterniond(x.transform.rotation.w, x.transform.rotation.x, x.transform.rotation.y,
