@@ -1,5 +1,6 @@
 // `freeplay replay SESSION_DIR`: reads a recorded session's bag back and recomputes its metrics, comparing them with
-// the run's episodes.jsonl record when the session sits in a run folder.
+// the run's episodes.jsonl record when the session sits in a run folder; with --children-from-bag, re-runs the
+// session with the recorded children's actions and a (new) robot policy into a run folder.
 #ifdef FREEPLAY_WITH_RECORDING
 
 #include <fmt/format.h>
@@ -12,7 +13,10 @@
 #include "command_registry.hpp"
 #include "freeplay/core/atomic_file.hpp"
 #include "freeplay/core/error.hpp"
+#include "freeplay/recording/child_replay.hpp"
 #include "freeplay/recording/replay.hpp"
+#include "freeplay/runner/run_folder.hpp"
+#include "vocabulary.hpp"
 
 namespace freeplay::cli {
 namespace {
@@ -22,6 +26,7 @@ struct ReplayOptions {
   bool json = false;
   bool children_from_bag = false;
   std::string policy;
+  std::string out;
 };
 
 // The episodes.jsonl record of a session folder `<run>/sessions/<id>`, if the run folder has one.
@@ -41,10 +46,72 @@ std::optional<nlohmann::json> episode_record(const std::filesystem::path& sessio
 
 std::string number(double v) { return std::isnan(v) ? "nan" : fmt::format("{:.6g}", v); }
 
+// --children-from-bag: a new episode with the recorded children, written to a run folder, metrics side by side.
+void replay_children(const ReplayOptions& o) {
+  const auto recorded = recording::read_recorded_children(o.session);
+  const auto scenario = recording::replay_scenario(recorded, o.policy, scenario_vocabulary());
+  const auto models = runner::SharedModels::load_default();
+  auto result = recording::replay_children(recorded, scenario, models);
+  const std::string variant = "replay";
+  const auto id = runner::RunFolder::episode_file_id(variant, 0);
+  runner::RunFolder folder(o.out.empty() ? runner::RunFolder::default_dir("replay-" + recorded.episode_id)
+                                         : std::filesystem::path(o.out));
+  if (folder.finished(variant, 0, scenario.config_hash)) {
+    throw InputError(fmt::format("'{}' already holds this replay", folder.dir().string()), "--out",
+                     "another (or an empty) run folder");
+  }
+  folder.write("events/" + id + ".jsonl", result.events.to_jsonl());
+  auto record = result.record;
+  record["variant"] = variant;
+  record["scenario"] = scenario.name;
+  record["scenario_file"] = scenario.file;
+  record["condition"] = scenario.condition;
+  if (scenario.condition == "child-robot") record["policy"] = scenario.policy;
+  record["episode"] = 0;
+  record["episode_id"] = id;
+  record["seed"] = recorded.seed;
+  record["config_hash"] = scenario.config_hash;
+  folder.append(record);
+
+  auto before = episode_record(o.session);
+  const auto before_metrics = recording::flatten_numbers(
+      before ? before->value("metrics", nlohmann::json::object())
+             : recording::recompute_metrics(recording::read_session(o.session)).value("metrics", nlohmann::json::object()),
+      "metrics");
+  const auto after_metrics = recording::flatten_numbers(record.value("metrics", nlohmann::json::object()), "metrics");
+  if (o.json) {
+    std::cout << nlohmann::json{{"run_folder", folder.dir().string()}, {"recorded", before_metrics},
+                                {"replayed", after_metrics}}
+                     .dump(2)
+              << "\n";
+    return;
+  }
+  std::cout << fmt::format("{}: children replayed from the bag ({:.1f} s of free play, ended by {}), robot policy '{}'\n",
+                           recorded.bag.string(), recorded.freeplay_duration_s, recorded.ended_by,
+                           scenario.condition == "child-robot" ? scenario.policy : "-");
+  std::cout << fmt::format("{:<52} {:>12} {:>12}\n", "metric", before ? "episodes.jsonl" : "from bag", "replayed");
+  std::map<std::string, std::pair<double, double>> rows;
+  for (const auto& [name, value] : before_metrics) rows[name] = {value, std::nan("")};
+  for (const auto& [name, value] : after_metrics) {
+    rows.try_emplace(name, std::nan(""), value);
+    rows[name].second = value;
+  }
+  for (const auto& [name, values] : rows) {
+    if (name.rfind("metrics.label_share", 0) == 0) continue;  // replayed children have no annotations
+    std::cout << fmt::format("{:<52} {:>12} {:>12}\n", name, number(values.first), number(values.second));
+  }
+  std::cout << fmt::format("run folder: {} (no annotations: the replayed children's states are unknown)\n",
+                           folder.dir().string());
+}
+
 void replay(const ReplayOptions& o) {
   if (o.children_from_bag) {
-    throw InputError("--children-from-bag is not implemented yet", "--children-from-bag",
-                     "omit it (metric recomputation only)");
+    replay_children(o);
+    return;
+  }
+  if (!o.policy.empty() || !o.out.empty()) {
+    throw InputError("--policy and --out need --children-from-bag", o.policy.empty() ? "--out" : "--policy",
+                     "add --children-from-bag, or omit them (metric recomputation only)");
   }
   const auto recording = recording::read_session(o.session);
   const auto recomputed = recording::recompute_metrics(recording);
@@ -99,10 +166,13 @@ const RegisterCommand replay_command(45, [](CLI::App& program) {
       ->check(CLI::ExistingPath);
   cmd->add_flag("--json", o->json, "Print JSON instead of a table");
   cmd->add_flag("--children-from-bag", o->children_from_bag,
-                "Re-run the session with the children's touches replayed from the bag (not implemented yet)");
-  cmd->add_option("--policy", o->policy, "Robot policy for --children-from-bag");
+                "Re-run the session with the children's actions replayed from the bag while a robot policy plays");
+  cmd->add_option("--policy", o->policy, "Robot policy for --children-from-bag (default: the recorded one)");
+  cmd->add_option("-o,--out", o->out, "Run folder for --children-from-bag (default: runs/<UTC time>-replay-<id>)");
   cmd->footer("Exit status: 0 when every metric equals the run's episodes.jsonl record (or there is none), 1 when\n"
-              "any differs, 2 on bad input (no bag, an unindexed bag: run `rosbag reindex`).");
+              "any differs, 2 on bad input (no bag, an unindexed bag: run `rosbag reindex`). With\n"
+              "--children-from-bag: writes episodes.jsonl and events/ of the new episode into the run folder and\n"
+              "prints its metrics beside the recorded ones (exit 0).");
   cmd->callback([o] { replay(*o); });
 });
 

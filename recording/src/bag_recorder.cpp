@@ -8,11 +8,13 @@
 #include <mutex>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <yaml-cpp/yaml.h>
 
 #include "freeplay/agents/annotations.hpp"
 #include "freeplay/core/atomic_file.hpp"
 #include "freeplay/core/error.hpp"
 #include "freeplay/recording/camera_topics.hpp"
+#include "freeplay/recording/robot_links.hpp"
 #include "freeplay/recording/ros_messages.hpp"
 #include "freeplay/recording/session_files.hpp"
 #include "freeplay/sim/sandtray.hpp"
@@ -110,6 +112,7 @@ struct BagRecorder::Impl {
   std::map<std::string, std::string> notes;
   std::vector<Participant> participants;  // from the first snapshot (profiles complete at the end)
   std::map<std::string, double> camera_tf_t;
+  std::unique_ptr<NaoLinkFrames> nao_links;  // child-robot episodes: forward kinematics of the recorded joints
 
   template <class M>
   void put(const char* topic, double t, const M& message, bool latched = false) {
@@ -270,6 +273,15 @@ struct BagRecorder::Impl {
     joints.velocity.assign(robot.velocities.begin(), robot.velocities.end());
     joints.effort.assign(robot.efforts.begin(), robot.efforts.end());
     put(topics::kJointStates, t, joints);
+    if (nao_links) {  // robot_state_publisher: the URDF links from the joint states, at the /tf rate
+      msg::TFMessage links;
+      for (const auto& link : nao_links->compute(robot.joint_names, robot.positions)) {
+        links.transforms.push_back(transform(joints.header.stamp, link.parent, link.child,
+                                             link.parent_T_child.translation(),
+                                             Eigen::Quaterniond(link.parent_T_child.rotation())));
+      }
+      put(topics::kTf, t, links);
+    }
     if (robot.finger) {
       msg::PoseStamped pose;
       pose.header.stamp = ros_time(t);
@@ -358,6 +370,15 @@ void BagRecorder::begin(const runner::EpisodeInfo& info) {
   d.bag.setChunkThreshold(static_cast<std::uint32_t>(d.settings.chunk_kb) * 1024U);
   d.bag.setCompression(compression_of(d.settings.compression));
   d.open = true;
+  if (info.scenario != nullptr) {
+    msg::String scenario;
+    scenario.data = ros_string(YAML::Dump(info.scenario->source));
+    d.put(topics::kScenario, 0.0, scenario, true);
+    if (info.scenario->condition == "child-robot") d.nao_links = std::make_unique<NaoLinkFrames>(info.scenario->arm_reach_m);
+  }
+  msg::String episode;
+  episode.data = ros_string(nlohmann::json{{"id", d.id}, {"seed", d.seed}, {"scenario", d.scenario_name}}.dump());
+  d.put(topics::kEpisode, 0.0, episode, true);
 }
 
 void BagRecorder::observe(const runner::EpisodeSnapshot& snapshot) {

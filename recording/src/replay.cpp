@@ -21,15 +21,6 @@ constexpr double kTickS = 0.1;
 constexpr double kMinMoveM = 0.02;
 constexpr double kTakenWindowS = 30.0;
 
-std::filesystem::path bag_of(const std::filesystem::path& path) {
-  if (std::filesystem::is_regular_file(path)) return path;
-  const auto paths = session_paths(path);
-  if (std::filesystem::exists(paths.bag)) return paths.bag;
-  if (std::filesystem::exists(paths.active_bag)) return paths.active_bag;
-  throw InputError(fmt::format("no freeplay.bag in '{}'", path.string()), "SESSION_DIR",
-                   "a session folder (<run>/sessions/<episode id>) or a .bag file");
-}
-
 double mean_or_nan(const std::vector<double>& v) {
   if (v.empty()) return std::nan("");
   double s = 0.0;
@@ -39,19 +30,35 @@ double mean_or_nan(const std::vector<double>& v) {
 
 }  // namespace
 
-SessionRecording read_session(const std::filesystem::path& path) {
-  SessionRecording out;
-  out.bag = bag_of(path);
-  rosbag::Bag bag;
+std::filesystem::path open_session_bag(const std::filesystem::path& path, rosbag::Bag& bag) {
+  std::filesystem::path file = path;
+  if (!std::filesystem::is_regular_file(path)) {
+    const auto paths = session_paths(path);
+    if (std::filesystem::exists(paths.bag)) {
+      file = paths.bag;
+    } else if (std::filesystem::exists(paths.active_bag)) {
+      file = paths.active_bag;
+    } else {
+      throw InputError(fmt::format("no freeplay.bag in '{}'", path.string()), "SESSION_DIR",
+                       "a session folder (<run>/sessions/<episode id>) or a .bag file");
+    }
+  }
   try {
-    bag.open(out.bag.string(), rosbag::bagmode::Read);
+    bag.open(file.string(), rosbag::bagmode::Read);
   } catch (const rosbag::BagUnindexedException&) {
-    throw InputError(fmt::format("'{}' is not indexed (the recording was killed)", out.bag.string()), "SESSION_DIR",
-                     fmt::format("an indexed bag: run `rosbag reindex {}` first", out.bag.string()));
+    throw InputError(fmt::format("'{}' is not indexed (the recording was killed)", file.string()), "SESSION_DIR",
+                     fmt::format("an indexed bag: run `rosbag reindex {}` first", file.string()));
   } catch (const rosbag::BagException& e) {
-    throw InputError(fmt::format("'{}' is not a readable bag: {}", out.bag.string(), e.what()), "SESSION_DIR",
+    throw InputError(fmt::format("'{}' is not a readable bag: {}", file.string(), e.what()), "SESSION_DIR",
                      "a ROS 1 bag written by `freeplay run --record`");
   }
+  return file;
+}
+
+SessionRecording read_session(const std::filesystem::path& path) {
+  SessionRecording out;
+  rosbag::Bag bag;
+  out.bag = open_session_bag(path, bag);
   rosbag::View view(bag);
   bool first = true;
   for (const auto& m : view) {
@@ -77,6 +84,7 @@ SessionRecording read_session(const std::filesystem::path& path) {
       for (const auto& x : tf->transforms) {
         const auto child = std_string(x.child_frame_id);
         if (child.rfind("touch", 0) == 0 || child.find('_') != std::string::npos) continue;
+        if (std_string(x.header.frame_id) != "sandtray") continue;  // the Nao's links hang from base_link
         out.item_positions[sandtray_time(x.header.stamp)][child] = Vec2(x.transform.translation.x, x.transform.translation.y);
       }
     } else if (topic == topics::kZones) {

@@ -201,8 +201,9 @@ class Episode {
   }
 
   EpisodeResult run(const std::atomic<bool>& stop, EpisodeObservers* observers = nullptr,
-                    const EpisodeInfo* info = nullptr) {
+                    const EpisodeInfo* info = nullptr, ChildActionSource* child_source = nullptr) {
     EpisodeResult result;
+    child_source_ = child_source;
     observers_ = observers != nullptr && !observers->empty() ? observers : nullptr;
     if (observers_ != nullptr) {
       for (auto& o : *observers_) o->begin(*info);
@@ -392,6 +393,9 @@ class Episode {
   double now() const { return tray_.time(); }
 
   bool ended() const {
+    if (child_source_ != nullptr) {
+      return std::all_of(children_.begin(), children_.end(), [](const ChildSlot& c) { return c.announced_quit; });
+    }
     if (child_robot_) return children_[0].agent->wants_to_stop();
     return children_[0].agent->wants_to_stop() && children_[1].agent->wants_to_stop();
   }
@@ -490,7 +494,8 @@ class Episode {
     const auto items = tray_.items();
     for (std::size_t i = 0; i < children_.size(); ++i) perceive(children_[i], items, t, perceptions_[i]);
     for (std::size_t i = 0; i < children_.size(); ++i) {
-      children_[i].last = children_[i].agent->step(t, kTickS, perceptions_[i]);
+      children_[i].last = child_source_ != nullptr ? child_source_->actions(children_[i].seat_name, t, kTickS)
+                                                   : children_[i].agent->step(t, kTickS, perceptions_[i]);
     }
     for (auto& c : children_) apply(c, t);
   }
@@ -975,6 +980,7 @@ class Episode {
   double sync_max_mm_ = 0.0;
   int moves_stolen_ = 0;
   bool move_unreported_ = false;
+  ChildActionSource* child_source_ = nullptr;  // replaces the agents' actions when set
   // Observers.
   EpisodeObservers* observers_ = nullptr;
   std::string stage_ = "greeting";
@@ -995,9 +1001,10 @@ EpisodeResult run_episode(const Scenario& scenario, std::uint64_t seed, const Sh
 }
 
 EpisodeResult run_episode(const Scenario& scenario, std::uint64_t seed, const SharedModels& models,
-                          const std::atomic<bool>& stop, EpisodeObservers& observers, const EpisodeInfo& info) {
+                          const std::atomic<bool>& stop, EpisodeObservers& observers, const EpisodeInfo& info,
+                          ChildActionSource* children) {
   Episode episode(scenario, seed, models);
-  return episode.run(stop, &observers, &info);
+  return episode.run(stop, &observers, &info, children);
 }
 
 EpisodeFunction episode_function(const SharedModels& models, ObserverFactory observers, std::filesystem::path run_dir) {

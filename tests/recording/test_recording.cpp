@@ -167,7 +167,9 @@ TEST(BagRecorder, TopicsTypesAndRatesAreTheRealOnes) {
       {"/freeplay/events", "std_msgs/String"},
       {"/freeplay/annotations", "std_msgs/String"},
       {"/speech", "std_msgs/String"},
-      {"/sandtray/signals/start_freeplay", "std_msgs/Empty"}};
+      {"/sandtray/signals/start_freeplay", "std_msgs/Empty"},
+      {"/freeplay/scenario", "std_msgs/String"},
+      {"/freeplay/episode", "std_msgs/String"}};
   for (const auto& [topic, type] : expected) {
     ASSERT_TRUE(rec.topic_types.contains(topic)) << topic;
     EXPECT_EQ(rec.topic_types.at(topic), type) << topic;
@@ -181,7 +183,7 @@ TEST(BagRecorder, TopicsTypesAndRatesAreTheRealOnes) {
   near_rate("/camera_purple/depth/image_raw/compressedDepth", 30);
   near_rate("/camera_purple/rgb/camera_info", 30);
   near_rate("/joint_states", 10);
-  near_rate("/tf", 20 + 10);  // game + others at 10 Hz each, camera optical frames at 10 Hz
+  near_rate("/tf", 20 + 10 + 10);  // game + others + the Nao's links at 10 Hz each, camera optical frames at 10 Hz
   EXPECT_EQ(rec.topic_counts.at("/footprints"), 1U);
   EXPECT_EQ(rec.topic_counts.at("/freeplay/annotations"), 1U);
   EXPECT_EQ(rec.topic_counts.at("/sandtray/background/image/compressed"), rec.topic_counts.at("/zones"));

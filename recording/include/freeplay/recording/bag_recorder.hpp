@@ -38,6 +38,8 @@ inline constexpr const char* kSpeech = "/speech";                               
 inline constexpr const char* kAllSpeech = "/freeplay/speech";                       ///< String: JSON, everyone's
 inline constexpr const char* kEvents = "/freeplay/events";                          ///< String: JSON, the event log
 inline constexpr const char* kAnnotations = "/freeplay/annotations";                ///< String: PInSoRo YAML
+inline constexpr const char* kScenario = "/freeplay/scenario";  ///< String, latched: the validated scenario YAML
+inline constexpr const char* kEpisode = "/freeplay/episode";    ///< String, latched: JSON {id, seed, scenario}
 }  // namespace topics
 
 /// Counts of what a recorder wrote.
@@ -58,9 +60,11 @@ class BagRecorder final : public runner::EpisodeObserver, public runner::FrameSi
   BagRecorder(const BagRecorder&) = delete;
   BagRecorder& operator=(const BagRecorder&) = delete;
 
-  /// Creates the session folder and opens `freeplay.bag.active`; InputError when the folder is not writable.
+  /// Creates the session folder, opens `freeplay.bag.active` and writes the scenario and episode identity (latched);
+  /// InputError when the folder is not writable.
   void begin(const runner::EpisodeInfo& info) override;
-  /// Writes the tick's /tf, joint states, poses, background, zones, footprints and events.
+  /// Writes the tick's /tf (with the Nao's links in child-robot episodes), joint states, poses, background, zones,
+  /// footprints and events.
   void observe(const runner::EpisodeSnapshot& snapshot) override;
   /// Writes the annotations, closes the bag, renames it `freeplay.bag`, writes experiment.yaml and the annotation
   /// YAML, and adds `recording` (the session folder, relative to the run folder) to the record.

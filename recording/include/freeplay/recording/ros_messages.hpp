@@ -3,6 +3,7 @@
 // `ContainerAllocator::rebind`, which std::allocator lost in C++20, so every message is instantiated with
 // RosAllocator (std::allocator plus rebind). The bag stores the standard type names, MD5 sums and definitions.
 
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -71,5 +72,9 @@ inline constexpr double kEpochS = 1500000000.0;
 ros::Time ros_time(double t);
 /// Sandtray time (s) of a ROS time.
 double sandtray_time(const ros::Time& stamp);
+
+/// Opens the bag of a session folder (`freeplay.bag`, else `freeplay.bag.active`) or a bag file for reading and
+/// returns its path; InputError when there is none or it is unreadable (unindexed: says to run `rosbag reindex`).
+std::filesystem::path open_session_bag(const std::filesystem::path& path, rosbag::Bag& bag);
 
 }  // namespace freeplay::recording

@@ -13,6 +13,7 @@
 #include "freeplay/agents/annotations.hpp"
 #include "freeplay/agents/params.hpp"
 #include "freeplay/core/event_log.hpp"
+#include "freeplay/runner/child_action_source.hpp"
 #include "freeplay/runner/episode_observer.hpp"
 #include "freeplay/runner/robot_body.hpp"
 #include "freeplay/runner/scenario.hpp"
@@ -45,9 +46,11 @@ struct EpisodeResult {
 EpisodeResult run_episode(const Scenario& scenario, std::uint64_t seed, const SharedModels& models,
                           const std::atomic<bool>& stop);
 /// Same, with observers that see every 10 Hz tick of every stage (cameras, recorders); the result is identical
-/// to the run without observers except for the fields the observers add to the record.
+/// to the run without observers except for the fields the observers add to the record. With `children`, the
+/// children's free-play actions come from it instead of the synthetic agents (which then leave no annotations).
 EpisodeResult run_episode(const Scenario& scenario, std::uint64_t seed, const SharedModels& models,
-                          const std::atomic<bool>& stop, EpisodeObservers& observers, const EpisodeInfo& info);
+                          const std::atomic<bool>& stop, EpisodeObservers& observers, const EpisodeInfo& info,
+                          ChildActionSource* children = nullptr);
 
 /// Makes the observers an episode of a scenario needs (cameras, recorder) for the run folder `run_dir`.
 using ObserverFactory = std::function<EpisodeObservers(const Scenario& scenario, const std::filesystem::path& run_dir)>;
