@@ -1,5 +1,6 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <fstream>
 
@@ -35,7 +36,7 @@ struct Session {
 };
 
 Session record(const std::string& condition, std::uint64_t seed) {
-  const auto root = std::filesystem::temp_directory_path() / ("freeplay-child-replay-" + condition);
+  const auto root = std::filesystem::temp_directory_path() / ("freeplay-child-replay-" + condition + "-" + std::to_string(static_cast<long>(::getpid())));
   std::filesystem::remove_all(root);
   const auto scenario = short_session(condition);
   runner::EpisodeObservers observers;
@@ -121,7 +122,7 @@ TEST(ChildReplay, ChildChildSessionsReplayBothChildren) {
 }
 
 TEST(ChildReplay, BadSessionFoldersGiveClearErrors) {
-  const auto empty = std::filesystem::temp_directory_path() / "freeplay-child-replay-empty";
+  const auto empty = std::filesystem::temp_directory_path() / ("freeplay-child-replay-empty-" + std::to_string(static_cast<long>(::getpid())));
   std::filesystem::remove_all(empty);
   std::filesystem::create_directories(empty);
   try {
