@@ -2,10 +2,13 @@
 // real resolutions (per 1/30 s: 3 colour 960×540 JPEG q90 + 2 depth 640×480 compressedDepth PNG), with bag bytes.
 #include <benchmark/benchmark.h>
 
+#include <fmt/format.h>
+
 #include <filesystem>
 
 #include "freeplay/core/yaml_schema.hpp"
 #include "freeplay/recording/bag_recorder.hpp"
+#include "freeplay/runner/camera_rig.hpp"
 #include "freeplay/runner/episode.hpp"
 #include "freeplay/sim/item_catalogue.hpp"
 #include "freeplay/sim/sandtray.hpp"
@@ -95,8 +98,39 @@ void BM_CameraFrameSet(benchmark::State& state) {
   state.counters["bag_MB_per_sim_min"] = bytes / 1e6 / (t / 60.0);
 }
 
+// End to end: `scenarios/record-demo.yaml` (three cameras rendered by the camera rig with the fast preset, depth for
+// the two SR300s, the recorder writing every stream) over a short protocol, cameras at `rate_hz`; wall-clock rate.
+void record_demo(benchmark::State& state, double rate_hz) {
+  const auto rate = fmt::format("{}", rate_hz);
+  const auto s = runner::load_scenario(std::string(FREEPLAY_SCENARIOS_DIR) + "/record-demo.yaml",
+                                       {"protocol.greeting_s=2", "protocol.tutorial_s=2", "protocol.freeplay_cap_s=10",
+                                        "protocol.debriefing_s=1", "cameras.0.rate_hz=" + rate,
+                                        "cameras.1.rate_hz=" + rate, "cameras.2.rate_hz=" + rate});
+  const auto dir = bench_dir();
+  double simulated = 0.0;
+  std::uintmax_t bytes = 0;
+  for (auto _ : state) {
+    runner::EpisodeObservers observers;
+    auto recorder = std::make_unique<recording::BagRecorder>(dir / "sessions", s.recording);
+    std::vector<runner::FrameSink*> sinks{recorder.get()};
+    observers.push_back(std::move(recorder));
+    observers.push_back(std::make_unique<runner::CameraRig>(s, runner::renderer_options(s.rendering), sinks));
+    const std::atomic<bool> stop{false};
+    const auto result = runner::run_episode(s, 11, models(), stop, observers, {&s, "demo-0000", 11});
+    simulated += result.simulated_s;
+    bytes += std::filesystem::file_size(dir / "sessions/demo-0000/freeplay.bag");
+  }
+  state.counters["sim_s_per_wall_s"] = benchmark::Counter(simulated, benchmark::Counter::kIsRate);
+  state.counters["bag_MB_per_sim_min"] = static_cast<double>(bytes) / 1e6 / (simulated / 60.0);
+}
+
+void BM_RecordDemoCameras30Hz(benchmark::State& state) { record_demo(state, 30.0); }
+void BM_RecordDemoCameras5Hz(benchmark::State& state) { record_demo(state, 5.0); }
+
 }  // namespace
 
+BENCHMARK(BM_RecordDemoCameras30Hz)->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();
+BENCHMARK(BM_RecordDemoCameras5Hz)->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();
 BENCHMARK(BM_EpisodeObserved)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_EpisodeRecorded)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_CameraFrameSet)->Unit(benchmark::kMillisecond)->MinTime(2.0);

@@ -188,13 +188,8 @@ class ControllerEpisode {
     previous_q_ = nao_.joint_positions();
     tray_.signal(sim::Signal::StartFreeplay);
     tray_.drain_events();
-    planning::MoveExecutorConfig config;
-    config.time_budget_s = scenario.planner_budget_s;
-    config.finger_speed_mps = scenario.finger_speed_mps;
     const auto disc = nao_.arm_reach();
-    config.arm_reach = planning::ArmReach{disc.centre, scenario.arm_reach_m, 0.0};
-    executor_ = std::make_unique<planning::MoveExecutor>(
-        std::shared_ptr<const planning::MotionPlanner>(planning::make_planner(scenario.planner)), config);
+    executor_ = make_move_executor(scenario, disc.centre, disc.radius);
     planner_rng_ = seeds_.stream("planner");
     const mjModel* m = stage_model_->mj();
     trace_.interval_steps = spec_.trace_interval_steps;

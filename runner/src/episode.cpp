@@ -180,19 +180,8 @@ class Episode {
       policy_->reset(context, seeds_.stream("policy"));
       body_ = models.robot_body(scenario.robot_mode, scenario.arm_reach_m);
       follower_ = std::make_unique<BodyFollower>(*body_);
-      planning::MoveExecutorConfig config;
-      config.time_budget_s = scenario.planner_budget_s;
-      config.finger_speed_mps = scenario.finger_speed_mps;
       const auto disc = body_->reach();
-      config.arm_reach = planning::ArmReach{
-          disc.centre, scenario.arm_reach_m,
-          std::sqrt(std::max(0.0, scenario.arm_reach_m * scenario.arm_reach_m - disc.radius * disc.radius))};
-      planning::PlannerOptions planner_options;
-      // The real A* plans to any point; 101 exceeds every occupancy, so no goal is refused for lying on items.
-      if (!scenario.reject_blocked_goals) planner_options.goal_blocked_occupancy = 101;
-      executor_ = std::make_unique<planning::MoveExecutor>(
-          std::shared_ptr<const planning::MotionPlanner>(planning::make_planner(scenario.planner, planner_options)),
-          config);
+      executor_ = make_move_executor(scenario, disc.centre, disc.radius);
       planner_rng_ = seeds_.stream("planner");
       perception_ = std::make_unique<PerceptionModel>(
           PerceptionSettings{scenario.face_detection_rate, scenario.perception_latency_s, scenario.gaze_noise_deg},

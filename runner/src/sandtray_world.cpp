@@ -1,7 +1,10 @@
 #include "freeplay/runner/sandtray_world.hpp"
 
 #include <algorithm>
+#include <cmath>
 
+#include "freeplay/planning/plan.hpp"
+#include "freeplay/runner/scenario.hpp"
 #include "freeplay/sim/item_catalogue.hpp"
 
 namespace freeplay::runner {
@@ -28,6 +31,21 @@ planning::MoveWorld sandtray_move_world(const sim::Sandtray& tray) {
                        [](const sim::Holder& h) { return h.kind == sim::Holder::Kind::Finger; });
   };
   return world;
+}
+
+std::unique_ptr<planning::MoveExecutor> make_move_executor(const Scenario& scenario, const Vec2& shoulder_xy,
+                                                           double disc_radius) {
+  planning::MoveExecutorConfig config;
+  config.time_budget_s = scenario.planner_budget_s;
+  config.finger_speed_mps = scenario.finger_speed_mps;
+  const double reach = scenario.arm_reach_m;
+  config.arm_reach = planning::ArmReach{shoulder_xy, reach,
+                                        std::sqrt(std::max(0.0, reach * reach - disc_radius * disc_radius))};
+  planning::PlannerOptions options;
+  // The real A* plans to any point; 101 exceeds every occupancy, so no goal is refused for lying on items.
+  if (!scenario.reject_blocked_goals) options.goal_blocked_occupancy = 101;
+  return std::make_unique<planning::MoveExecutor>(
+      std::shared_ptr<const planning::MotionPlanner>(planning::make_planner(scenario.planner, options)), config);
 }
 
 }  // namespace freeplay::runner
