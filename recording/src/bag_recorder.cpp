@@ -3,7 +3,12 @@
 #include <fmt/format.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <deque>
+#include <functional>
+#include <future>
 #include <map>
 #include <mutex>
 #include <opencv2/imgcodecs.hpp>
@@ -13,6 +18,7 @@
 #include "freeplay/agents/annotations.hpp"
 #include "freeplay/core/atomic_file.hpp"
 #include "freeplay/core/error.hpp"
+#include "freeplay/core/task_pool.hpp"
 #include "freeplay/recording/camera_topics.hpp"
 #include "freeplay/recording/robot_links.hpp"
 #include "freeplay/recording/ros_messages.hpp"
@@ -86,6 +92,19 @@ rosbag::compression::CompressionType compression_of(const std::string& name) {
   return rosbag::compression::Uncompressed;
 }
 
+/// One frame's compressed images (empty when the frame has no such image).
+struct EncodedImages {
+  std::vector<std::uint8_t> jpeg;   ///< colour, JPEG
+  std::vector<std::uint8_t> depth;  ///< compressedDepth payload
+};
+
+EncodedImages encode_images(const cv::Mat& rgb, const cv::Mat& depth_m, const runner::RecordSettings& settings) {
+  EncodedImages out;
+  if (!rgb.empty()) out.jpeg = encode_jpeg(rgb, settings.jpeg_quality);
+  if (!depth_m.empty()) out.depth = encode_compressed_depth(depth_m, settings.png_level);
+  return out;
+}
+
 std::string pinsoro_condition(const std::string& condition) {
   return condition == "child-robot" ? "childrobot" : "childchild";
 }
@@ -114,13 +133,57 @@ struct BagRecorder::Impl {
   std::map<std::string, double> camera_tf_t;
   std::unique_ptr<NaoLinkFrames> nao_links;  // child-robot episodes: forward kinematics of the recorded joints
 
+  // Camera images are compressed on the encoder threads; every bag write waits its turn in `pending`, so the bag
+  // holds the messages in the order they were put, whatever the number of threads.
+  struct Pending {
+    std::shared_future<std::shared_ptr<const EncodedImages>> images;  // valid for a camera frame
+    std::function<void(const EncodedImages*)> write;                  // the bag writes, run in order
+  };
+  std::unique_ptr<TaskPool> encoders;
+  std::deque<Pending> pending;
+  struct LastEncoded {  // a camera's last images: faster-than-tick cameras repeat them, encoded once
+    cv::Mat rgb, depth_m;
+    std::shared_future<std::shared_ptr<const EncodedImages>> images;
+  };
+  std::map<std::string, LastEncoded> last_encoded;
+
+  /// Bag writes that are due: every one whose images are ready, or all of them with `wait`.
+  void flush(bool wait) {
+    while (!pending.empty()) {
+      auto& head = pending.front();
+      std::shared_ptr<const EncodedImages> images;
+      if (head.images.valid()) {
+        if (!wait && head.images.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
+        images = head.images.get();  // rethrows an encoder's exception
+      }
+      auto write = std::move(head.write);
+      pending.pop_front();
+      write(images.get());
+    }
+  }
+
+  /// The most camera frames waiting for their encoding before the episode thread waits (bounds the memory).
+  std::size_t max_pending_frames() const { return 2 * static_cast<std::size_t>(std::max(1, encoders->threads())) + 2; }
+
   template <class M>
   void put(const char* topic, double t, const M& message, bool latched = false) {
     put(std::string(topic), t, message, latched);
   }
 
+  /// Writes `message` now, or after the writes still pending.
   template <class M>
   void put(const std::string& topic, double t, const M& message, bool latched = false) {
+    if (pending.empty()) {
+      write_now(topic, t, message, latched);
+    } else {
+      pending.push_back({{}, [this, topic, t, message, latched](const EncodedImages*) {
+                           write_now(topic, t, message, latched);
+                         }});
+    }
+  }
+
+  template <class M>
+  void write_now(const std::string& topic, double t, const M& message, bool latched = false) {
     if (latched) {
       auto header = boost::make_shared<ros::M_string>();
       (*header)["callerid"] = "/sandtray";
@@ -173,6 +236,14 @@ struct BagRecorder::Impl {
   void close_bag() {
     if (!open) return;
     open = false;
+    try {
+      flush(true);
+    } catch (...) {  // an image that failed to encode: close what was written, then report it
+      pending.clear();
+      bag.close();
+      std::filesystem::rename(paths.active_bag, paths.bag);
+      throw;
+    }
     bag.close();
     std::filesystem::rename(paths.active_bag, paths.bag);
   }
@@ -334,6 +405,7 @@ BagRecorder::BagRecorder(std::filesystem::path sessions_root, runner::RecordSett
     : impl_(std::make_unique<Impl>()) {
   impl_->root = std::move(sessions_root);
   impl_->settings = std::move(settings);
+  impl_->encoders = std::make_unique<TaskPool>(impl_->settings.encoder_threads);
 }
 
 BagRecorder::~BagRecorder() {
@@ -421,27 +493,50 @@ void BagRecorder::write(const stage::FramePack& frame) {
     }
     d.put(topics::kTf, t, tf);
   }
-  if (!frame.rgb.empty()) {
-    msg::CompressedImage image;
-    image.header.stamp = stamp;
-    image.header.frame_id = ros_string(names.rgb_frame);
-    image.format = ros_string(names.rgb_format);
-    const auto jpeg = encode_jpeg(frame.rgb, d.settings.jpeg_quality);
-    image.data.assign(jpeg.begin(), jpeg.end());
-    d.put(names.rgb_image, t, image);
-    d.put(names.rgb_info, t, camera_info(frame.K, names.rgb_frame, stamp));
+  if (frame.rgb.empty() && frame.depth_m.empty()) return;
+  auto& cached = d.last_encoded[frame.camera];
+  if (!cached.images.valid() || cached.rgb.data != frame.rgb.data || cached.depth_m.data != frame.depth_m.data) {
+    // The rig hands a repeated image over with the same pixels: those are compressed once.
+    cached.rgb = frame.rgb;
+    cached.depth_m = frame.depth_m;
+    cached.images = d.encoders
+                        ->submit([rgb = frame.rgb, depth_m = frame.depth_m, settings = d.settings] {
+                          return std::make_shared<const EncodedImages>(encode_images(rgb, depth_m, settings));
+                        })
+                        .share();
   }
-  if (!frame.depth_m.empty()) {
-    msg::CompressedImage depth;
-    depth.header.stamp = stamp;
-    depth.header.frame_id = ros_string(names.depth_frame);
-    depth.format = ros_string("16UC1; compressedDepth");
-    const auto data = encode_compressed_depth(frame.depth_m, d.settings.png_level);
-    depth.data.assign(data.begin(), data.end());
-    d.put(names.depth_image, t, depth);
-    d.put(names.depth_info, t, camera_info(frame.K_depth.width > 0 ? frame.K_depth : frame.K, names.depth_frame, stamp));
+  const auto K = frame.K;
+  const auto K_depth = frame.K_depth.width > 0 ? frame.K_depth : frame.K;
+  d.pending.push_back({cached.images, [&d, names, t, K, K_depth](const EncodedImages* images) {
+                         const auto header_stamp = ros_time(t);
+                         if (!images->jpeg.empty()) {
+                           msg::CompressedImage image;
+                           image.header.stamp = header_stamp;
+                           image.header.frame_id = ros_string(names.rgb_frame);
+                           image.format = ros_string(names.rgb_format);
+                           image.data.assign(images->jpeg.begin(), images->jpeg.end());
+                           d.write_now(names.rgb_image, t, image);
+                           d.write_now(names.rgb_info, t, camera_info(K, names.rgb_frame, header_stamp));
+                         }
+                         if (!images->depth.empty()) {
+                           msg::CompressedImage depth;
+                           depth.header.stamp = header_stamp;
+                           depth.header.frame_id = ros_string(names.depth_frame);
+                           depth.format = ros_string("16UC1; compressedDepth");
+                           depth.data.assign(images->depth.begin(), images->depth.end());
+                           d.write_now(names.depth_image, t, depth);
+                           d.write_now(names.depth_info, t, camera_info(K_depth, names.depth_frame, header_stamp));
+                         }
+                         ++d.stats.frames;
+                       }});
+  d.flush(false);
+  std::size_t frames_waiting = 0;
+  for (const auto& p : d.pending) frames_waiting += p.images.valid() ? 1 : 0;
+  if (frames_waiting > d.max_pending_frames()) {
+    const auto oldest = std::find_if(d.pending.begin(), d.pending.end(), [](const auto& p) { return p.images.valid(); });
+    oldest->images.wait();
+    d.flush(false);
   }
-  ++d.stats.frames;
 }
 
 void BagRecorder::set_gl_renderer(const std::string& renderer) {
@@ -474,7 +569,10 @@ void BagRecorder::abort() {
   std::lock_guard lock(impl_->mutex);
   auto& d = *impl_;
   if (!d.open) return;
-  d.close_bag();
+  try {
+    d.close_bag();
+  } catch (const std::exception&) {  // the episode's own error is the one to report; the bag is closed
+  }
   d.write_experiment(nullptr, false);
 }
 

@@ -67,8 +67,8 @@ std::vector<std::uint8_t> encode_compressed_depth(const cv::Mat& depth_m, int pn
     const float* in = depth_m.ptr<float>(r);
     auto* out = mm.ptr<std::uint16_t>(r);
     for (int c = 0; c < depth_m.cols; ++c) {
-      const double v = static_cast<double>(in[c]) * 1000.0;
-      out[c] = std::isfinite(v) && v > 0.0 && v <= 65535.0 ? static_cast<std::uint16_t>(std::lround(v)) : 0;
+      const double v = static_cast<double>(in[c]) * 1000.0;  // NaN fails both comparisons
+      out[c] = v > 0.0 && v <= 65535.0 ? static_cast<std::uint16_t>(v + 0.5) : std::uint16_t{0};
     }
   }
   std::vector<std::uint8_t> png;

@@ -253,10 +253,14 @@ std::shared_ptr<const Schema> scenario_schema(const ScenarioVocabulary& vocabula
                                       with_default("jpeg_quality", S::integer(1, 100), "90"),
                                       with_default("png_level", S::integer(0, 9), "3"),
                                       with_default("chunk_kb", S::integer(16, 1 << 20), "768"),
-                                      with_default("compression", S::enumeration({"none", "lz4", "bz2"}), "none")})},
+                                      with_default("compression", S::enumeration({"none", "lz4", "bz2"}), "none"),
+                                      with_default("encoder_threads", S::integer(0, 64), "2",
+                                                   "threads compressing camera images (0: the episode's thread)")})},
                              "true, false, or a map {bag: bool, jpeg_quality: 1–100, png_level: 0–9, "
-                             "chunk_kb: 16–1048576, compression: none|lz4|bz2}"),
-                   "false", "true, or a map {bag, jpeg_quality, png_level, chunk_kb, compression} (docs/recording.md)"),
+                             "chunk_kb: 16–1048576, compression: none|lz4|bz2, encoder_threads: 0–64}"),
+                   "false",
+                   "true, or a map {bag, jpeg_quality, png_level, chunk_kb, compression, encoder_threads} "
+                   "(docs/recording.md)"),
   });
 }
 
@@ -343,7 +347,7 @@ Scenario scenario_from_document(YamlDocument document, const std::vector<std::st
   if (const auto& r = root["record"]; r.IsMap()) {
     s.record = r["bag"].as<bool>();
     s.recording = {r["jpeg_quality"].as<int>(), r["png_level"].as<int>(), r["chunk_kb"].as<int>(),
-                   r["compression"].as<std::string>()};
+                   r["compression"].as<std::string>(), r["encoder_threads"].as<int>()};
   } else {
     s.record = r.as<bool>();
   }

@@ -388,3 +388,81 @@ TEST(RecordSchema, AcceptsTrueAndAMapAndRefusesBadValues) {
     }
   }
 }
+
+namespace {
+
+// Writes camera frames straight to a recorder with `threads` encoder threads: purple with depth, env_camera without,
+// each image repeated for three 30 Hz stamps (as the rig hands over a 10 Hz tick's image); returns the bag's path.
+std::filesystem::path record_frames(const std::filesystem::path& dir, int threads) {
+  runner::RecordSettings settings;
+  settings.encoder_threads = threads;
+  BagRecorder recorder(dir / "sessions", settings);
+  recorder.begin({nullptr, "frames-0000", 1});
+  for (int tick = 1; tick <= 20; ++tick) {
+    const double t = 0.1 * tick;
+    const auto purple = pack("camera_purple", t, true);
+    const auto env = pack("env_camera", t, false);
+    for (int k = 0; k < 3; ++k) {
+      auto p = purple;
+      p.stamp = t + k / 30.0;
+      recorder.write(p);
+      auto e = env;
+      e.stamp = t + k / 30.0;
+      recorder.write(e);
+    }
+  }
+  runner::EpisodeResult result;
+  recorder.end(result);
+  EXPECT_EQ(recorder.stats().frames, 120U);
+  return recorder.paths().bag;
+}
+
+std::string file_bytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+}  // namespace
+
+TEST(BagRecorder, EncoderThreadsLeaveTheBagByteForByteTheSame) {
+  const auto dir = fresh_dir("threads");
+  const auto on_episode_thread = file_bytes(record_frames(dir / "0", 0));
+  const auto on_three_threads = file_bytes(record_frames(dir / "3", 3));
+  ASSERT_GT(on_episode_thread.size(), 10000U);
+  EXPECT_TRUE(on_episode_thread == on_three_threads) << "bag bytes differ between 0 and 3 encoder threads";
+  // Repeated images are stored with their own stamps and the same pixels.
+  rosbag::Bag bag((dir / "3" / "sessions" / "frames-0000" / "freeplay.bag").string());
+  rosbag::View colour(bag, rosbag::TopicQuery("/camera_purple/rgb/image_raw/compressed"));
+  std::vector<std::pair<double, std::vector<std::uint8_t>>> images;
+  for (const auto& m : colour) {
+    const auto image = m.instantiate<msg::CompressedImage>();
+    images.emplace_back(sandtray_time(image->header.stamp), std::vector<std::uint8_t>(image->data.begin(), image->data.end()));
+  }
+  ASSERT_EQ(images.size(), 60U);
+  EXPECT_NEAR(images[1].first - images[0].first, 1.0 / 30.0, 1e-6);
+  EXPECT_EQ(images[0].second, images[1].second);
+  EXPECT_NE(images[0].second, images[3].second);  // the next tick's image
+}
+
+TEST(BagRecorder, AnImageThatFailsToEncodeIsReportedAndTheBagIsClosed) {
+  for (const int threads : {0, 2}) {
+    const auto dir = fresh_dir("bad-frame-" + std::to_string(threads));
+    runner::RecordSettings settings;
+    settings.encoder_threads = threads;
+    BagRecorder recorder(dir / "sessions", settings);
+    recorder.begin({nullptr, "bad-0000", 1});
+    auto frame = pack("camera_purple", 0.1, false);
+    frame.rgb = cv::Mat(4, 4, CV_16UC1, cv::Scalar(7));  // not an 8-bit colour image
+    EXPECT_THROW(
+        {
+          recorder.write(frame);
+          runner::EpisodeResult result;
+          recorder.end(result);
+        },
+        InputError)
+        << threads << " encoder threads";
+    recorder.abort();
+    EXPECT_TRUE(std::filesystem::exists(recorder.paths().bag)) << threads << " encoder threads";
+    EXPECT_FALSE(std::filesystem::exists(recorder.paths().active_bag)) << threads << " encoder threads";
+  }
+}

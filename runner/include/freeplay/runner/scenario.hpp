@@ -54,6 +54,7 @@ struct RecordSettings {
   int png_level = 3;                  ///< PNG level of depth and background images (the real launch files: 3)
   int chunk_kb = 768;                 ///< bag chunk size (rosbag's default): at most this much is lost on a kill
   std::string compression = "none";   ///< bag chunk compression: "none" (as the real bags), "lz4", "bz2"
+  int encoder_threads = 2;            ///< threads compressing camera images (0: on the episode's own thread)
 };
 
 /// The protocol of the paper, with stage durations (s).
