@@ -120,7 +120,7 @@ struct BagRecorder::Impl {
   std::uint64_t seed = 0;
   std::string scenario_name;
   std::string gl_renderer;
-  rosbag::Bag bag;
+  Bag bag;
   bool open = false;
   std::mutex mutex;
   RecordingStats stats;
@@ -191,9 +191,9 @@ struct BagRecorder::Impl {
       (*header)["type"] = ros::message_traits::datatype<M>();
       (*header)["md5sum"] = ros::message_traits::md5sum<M>();
       (*header)["message_definition"] = ros::message_traits::definition<M>();
-      bag.write(topic, ros_time(t), message, header);
+      bag.get().write(topic, ros_time(t), message, header);
     } else {
-      bag.write(topic, ros_time(t), message);
+      bag.get().write(topic, ros_time(t), message);
     }
     ++stats.messages;
   }
@@ -439,8 +439,8 @@ void BagRecorder::begin(const runner::EpisodeInfo& info) {
     throw InputError(fmt::format("cannot write the session folder '{}': {}", d.paths.dir.string(), e.what()),
                      "record", "a writable run folder (--out)");
   }
-  d.bag.setChunkThreshold(static_cast<std::uint32_t>(d.settings.chunk_kb) * 1024U);
-  d.bag.setCompression(compression_of(d.settings.compression));
+  d.bag.get().setChunkThreshold(static_cast<std::uint32_t>(d.settings.chunk_kb) * 1024U);
+  d.bag.get().setCompression(compression_of(d.settings.compression));
   d.open = true;
   if (info.scenario != nullptr) {
     msg::String scenario;

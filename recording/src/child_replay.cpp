@@ -63,14 +63,14 @@ void push(agents::ChildActions& a, const agents::TouchCommand& command) {
 
 RecordedChildren read_recorded_children(const std::filesystem::path& session) {
   RecordedChildren out;
-  rosbag::Bag bag;
+  Bag bag;
   out.bag = open_session_bag(session, bag);
   std::vector<Event> child_events;
   std::optional<double> freeplay_start;
   std::optional<double> duration;
   std::map<double, std::map<int, Vec2>> touches;                // snapshot stamp → finger → position
   std::map<double, std::map<std::string, HeadRay>> heads;        // snapshot stamp → seat → head ray
-  rosbag::View view(bag, rosbag::TopicQuery(std::vector<std::string>{topics::kScenario, topics::kEpisode,
+  rosbag::View view(bag.get(), rosbag::TopicQuery(std::vector<std::string>{topics::kScenario, topics::kEpisode,
                                                                      topics::kEvents, topics::kTf}));
   for (const auto& m : view) try {
     const auto topic = m.getTopic();

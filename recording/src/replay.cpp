@@ -4,6 +4,9 @@
 
 #include <cmath>
 #include <limits>
+#include <map>
+#include <opencv2/imgcodecs.hpp>
+#include <optional>
 #include <set>
 
 #include "freeplay/agents/annotations.hpp"
@@ -11,6 +14,7 @@
 #include "freeplay/core/error.hpp"
 #include "freeplay/recording/bag_recorder.hpp"
 #include "freeplay/recording/ros_messages.hpp"
+#include "freeplay/sim/canvas.hpp"
 
 namespace freeplay::recording {
 
@@ -28,9 +32,132 @@ double mean_or_nan(const std::vector<double>& v) {
   return s / static_cast<double>(v.size());
 }
 
+/// What the episode loop measures tick by tick in free play, and the robot's move reports, rebuilt from a recording.
+struct FreeplayReplay {
+  double drawing_coverage = std::nan("");
+  double mutual_gaze_s = 0.0;
+  int joint_attention_episodes = 0;
+  std::vector<double> path_lengths_m, clearances_mm, move_durations_s, placement_errors_mm, sync_mean_mm, sync_lag_ms;
+  double sync_max_mm = 0.0;
+  int moves_stolen = 0;
+};
+
+cv::Mat decode_background(const std::vector<std::uint8_t>& png) {
+  const cv::Mat bgr = cv::imdecode(cv::Mat(1, static_cast<int>(png.size()), CV_8UC1, const_cast<std::uint8_t*>(png.data())),
+                                   cv::IMREAD_COLOR);
+  if (bgr.empty()) throw InputError("a background image does not decode", topics::kBackground, "PNG");
+  return bgr;
+}
+
+/// The drawing's coverage: the last background published in free play against the one published when it began.
+double replay_drawing_coverage(const SessionRecording& rec, double freeplay_start, double freeplay_end) {
+  const std::vector<std::uint8_t>* map = nullptr;
+  const std::vector<std::uint8_t>* last = nullptr;
+  for (const auto& [t, png] : rec.backgrounds) {
+    if (t <= freeplay_start + 1e-9 || t > freeplay_end + 0.5 * kTickS) continue;
+    if (map == nullptr) map = &png;
+    last = &png;
+  }
+  if (map == nullptr) return std::nan("");
+  return sim::differing_pixel_share(decode_background(*last), decode_background(*map));
+}
+
+FreeplayReplay replay_freeplay(const SessionRecording& rec, double freeplay_start, double duration, bool child_robot) {
+  FreeplayReplay out;
+  if (std::isnan(duration)) return out;
+  std::string ended_by = "cap";
+  for (const auto& [tick, e] : rec.events) {
+    if (e.source == "protocol" && e.type == "freeplay_ended") ended_by = e.data.value("ended_by", "cap");
+  }
+  out.drawing_coverage = replay_drawing_coverage(rec, freeplay_start, freeplay_start + duration);
+  // The loop's ticks: k = 0, 1, … while k·0.1 < cap, or up to the tick at which the children quit.
+  long ticks = 0;
+  if (ended_by == "quit") {
+    ticks = std::lround(duration / kTickS);
+  } else {
+    while (static_cast<double>(ticks) * kTickS < duration) ++ticks;
+  }
+  struct Gaze {
+    std::string kind = "away";  // the episode's gaze names (child) or tray / item / child (robot)
+    std::string target;         // item name or seat
+  };
+  std::map<std::string, Gaze> children;
+  Gaze robot{"tray", ""};
+  bool joint_before = false;
+  std::map<std::string, Vec2> move_targets;  // item → the target of its last move_goal
+  std::map<std::string, Vec2> pending_placement;
+  std::size_t next = 0;
+  auto position_at = [&](double tick, const std::string& item) -> std::optional<Vec2> {
+    const auto it = rec.item_positions.find(tick);
+    if (it == rec.item_positions.end() || !it->second.contains(item)) return std::nullopt;
+    return it->second.at(item);
+  };
+  auto apply = [&](const RecordedEvent& recorded) {
+    const auto& e = recorded.event;
+    if (e.source.rfind("child.", 0) == 0 && e.type == "gaze") {
+      children[e.source.substr(6)] = {e.data.value("target", "away"), e.data.value("item", "")};
+    } else if (e.source == "robot" && e.type == "move_goal") {
+      robot = {"item", e.data.value("item", "")};
+      move_targets[robot.target] = Vec2(e.data.value("x", 0.0), e.data.value("y", 0.0));
+    } else if (e.source == "robot" && e.type == "look_at") {
+      if (e.data.contains("child")) robot = {"child", e.data.value("child", "")};
+      else if (e.data.contains("item")) robot = {"item", e.data.value("item", "")};
+      else robot = {"tray", ""};
+    } else if (e.source == "robot" && e.type == "move_result") {
+      robot = {"tray", ""};
+      const auto& d = e.data;
+      if (d.contains("path_length_m")) out.path_lengths_m.push_back(d["path_length_m"].get<double>());
+      if (d.contains("min_clearance_mm")) out.clearances_mm.push_back(d["min_clearance_mm"].get<double>());
+      if (d.contains("sync_error_mm_mean")) {
+        out.sync_mean_mm.push_back(d["sync_error_mm_mean"].get<double>());
+        out.sync_max_mm = std::max(out.sync_max_mm, d.value("sync_error_mm_max", 0.0));
+        out.sync_lag_ms.push_back(d.value("sync_lag_ms", std::nan("")));
+      }
+      if (d.contains("duration_s")) out.move_durations_s.push_back(d["duration_s"].get<double>());
+      if (d.value("stolen_by_child", false)) ++out.moves_stolen;
+      const auto item = d.value("item", "");
+      if (d.value("status", "") == "succeeded" && move_targets.contains(item)) pending_placement[item] = move_targets[item];
+    } else if (e.type == "interaction_event") {
+      const auto message = e.data.value("message", "");
+      if (message.rfind("releasing_", 0) != 0) return;
+      const auto item = message.substr(10);
+      const auto target = pending_placement.find(item);
+      if (target == pending_placement.end()) return;
+      if (const auto at = position_at(recorded.tick, item)) out.placement_errors_mm.push_back((*at - target->second).norm() * 1000.0);
+      pending_placement.erase(target);
+    }
+  };
+  auto gaze_tick = [&] {
+    bool joint = false;
+    if (child_robot) {
+      const auto& c = children["purple"];
+      if ((c.kind == "robot" || c.kind == "partner") && robot.kind == "child" && robot.target == "purple") {
+        out.mutual_gaze_s += kTickS;
+      }
+      joint = c.kind == "item" && !c.target.empty() && robot.kind == "item" && robot.target == c.target;
+    } else {
+      const auto& a = children["purple"];
+      const auto& b = children["yellow"];
+      if (a.kind == "partner" && b.kind == "partner") out.mutual_gaze_s += kTickS;
+      joint = a.kind == "item" && b.kind == "item" && !a.target.empty() && a.target == b.target;
+    }
+    if (joint && !joint_before) ++out.joint_attention_episodes;
+    joint_before = joint;
+  };
+  // Events before free play, then each free-play tick's events followed by that tick's gaze measurement.
+  for (; next < rec.events.size() && rec.events[next].tick <= freeplay_start + 1e-9; ++next) apply(rec.events[next]);
+  for (long k = 0; k < ticks; ++k) {
+    const double tick_end = freeplay_start + static_cast<double>(k + 1) * kTickS + 0.5 * kTickS;
+    for (; next < rec.events.size() && rec.events[next].tick < tick_end; ++next) apply(rec.events[next]);
+    gaze_tick();
+  }
+  for (; next < rec.events.size(); ++next) apply(rec.events[next]);  // a release in the debriefing
+  return out;
+}
+
 }  // namespace
 
-std::filesystem::path open_session_bag(const std::filesystem::path& path, rosbag::Bag& bag) {
+std::filesystem::path open_session_bag(const std::filesystem::path& path, Bag& bag) {
   std::filesystem::path file = path;
   if (!std::filesystem::is_regular_file(path)) {
     const auto paths = session_paths(path);
@@ -57,9 +184,9 @@ std::filesystem::path open_session_bag(const std::filesystem::path& path, rosbag
 
 SessionRecording read_session(const std::filesystem::path& path) {
   SessionRecording out;
-  rosbag::Bag bag;
+  Bag bag;
   out.bag = open_session_bag(path, bag);
-  rosbag::View view(bag);
+  rosbag::View view(bag.get());
   bool first = true;
   for (const auto& m : view) {
     const auto topic = m.getTopic();
@@ -103,6 +230,9 @@ SessionRecording read_session(const std::filesystem::path& path) {
       out.annotations_yaml = std_string(m.instantiate<msg::String>()->data);
     } else if (topic == topics::kInteractionEvents) {
       out.interaction_events.push_back(std_string(m.instantiate<msg::String>()->data));
+    } else if (topic == topics::kBackground) {
+      const auto image = m.instantiate<msg::CompressedImage>();
+      out.backgrounds.emplace_back(t, std::vector<std::uint8_t>(image->data.begin(), image->data.end()));
     }
   }
   return out;
@@ -250,6 +380,10 @@ nlohmann::json recompute_metrics(const SessionRecording& rec) {
       }
     }
   }
+  const auto freeplay = replay_freeplay(rec, freeplay_start, duration, child_robot);
+  metrics["drawing_coverage"] = freeplay.drawing_coverage;
+  metrics["mutual_gaze_s"] = freeplay.mutual_gaze_s;
+  metrics["joint_attention_episodes"] = freeplay.joint_attention_episodes;
   int child_touches = 0;
   int child_moves = 0;
   for (const auto& seat : {"purple", "yellow"}) {
@@ -279,6 +413,14 @@ nlohmann::json recompute_metrics(const SessionRecording& rec) {
         moves_started > 0 ? static_cast<double>(moves_succeeded) / moves_started : std::nan("");
     metrics["planner"]["moves_failed"] = moves_failed;
     metrics["planner"]["moves_cancelled"] = moves_cancelled;
+    metrics["planner"]["path_length_m"] = mean_or_nan(freeplay.path_lengths_m);
+    metrics["planner"]["min_clearance_mm"] = mean_or_nan(freeplay.clearances_mm);
+    metrics["executor"]["moves_stolen_by_child"] = freeplay.moves_stolen;
+    metrics["executor"]["move_duration_s"] = mean_or_nan(freeplay.move_durations_s);
+    metrics["executor"]["placement_error_mm"] = mean_or_nan(freeplay.placement_errors_mm);
+    metrics["executor"]["sync_error_mm_mean"] = mean_or_nan(freeplay.sync_mean_mm);
+    metrics["executor"]["sync_error_mm_max"] = freeplay.sync_mean_mm.empty() ? std::nan("") : freeplay.sync_max_mm;
+    metrics["executor"]["sync_lag_ms"] = mean_or_nan(freeplay.sync_lag_ms);
   }
   nlohmann::json extra;
   extra["events"] = rec.events.size();
@@ -317,6 +459,9 @@ std::vector<MetricComparison> compare_with_record(const nlohmann::json& recomput
     c.recorded = it != recorded.end() ? it->second : std::nan("");
     c.equal = it != recorded.end() && (c.replayed == c.recorded || (std::isnan(c.replayed) && std::isnan(c.recorded)));
     out.push_back(std::move(c));
+  }
+  for (const auto& [name, value] : recorded) {
+    if (!replayed.contains(name)) out.push_back({name, std::nan(""), value, false});
   }
   return out;
 }

@@ -1,6 +1,7 @@
 #include "freeplay/recording/ros_messages.hpp"
 
 #include <cmath>
+#include <mutex>
 
 namespace freeplay::recording {
 
@@ -15,6 +16,35 @@ ros::Time ros_time(double t) {
 double sandtray_time(const ros::Time& stamp) {
   const auto ns = static_cast<std::int64_t>(stamp.toNSec()) - static_cast<std::int64_t>(kEpochS) * 1000000000LL;
   return static_cast<double>(ns) * 1e-9;
+}
+
+namespace {
+
+std::mutex& bag_lifecycle_mutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
+}  // namespace
+
+Bag::Bag() {
+  std::lock_guard lock(bag_lifecycle_mutex());
+  bag_ = std::make_unique<rosbag::Bag>();
+}
+
+Bag::~Bag() {
+  std::lock_guard lock(bag_lifecycle_mutex());
+  bag_.reset();
+}
+
+void Bag::open(const std::string& path, std::uint32_t mode) {
+  std::lock_guard lock(bag_lifecycle_mutex());
+  bag_->open(path, mode);
+}
+
+void Bag::close() {
+  std::lock_guard lock(bag_lifecycle_mutex());
+  bag_->close();
 }
 
 }  // namespace freeplay::recording

@@ -24,6 +24,7 @@
 #include "freeplay/runner/run_folder.hpp"
 #include "freeplay/runner/sandtray_world.hpp"
 #include "freeplay/runner/versions.hpp"
+#include "freeplay/sim/canvas.hpp"
 #include "freeplay/sim/sandtray.hpp"
 #include "freeplay/sim/zones.hpp"
 
@@ -209,6 +210,7 @@ class Episode {
     // Free play.
     tray_.signal(sim::Signal::StartFreeplay);
     freeplay_start_ = tray_.time();
+    freeplay_map_ = tray_.background().clone();
     stage_ = "freeplay";
     stage_event("freeplay");
     drain_tray_events();
@@ -232,6 +234,7 @@ class Episode {
       }
     }
     const double duration = std::min(t, cap);
+    drawing_coverage_ = sim::differing_pixel_share(tray_.background(), freeplay_map_);
     log_.emit({freeplay_start_ + duration, "protocol", "freeplay_ended", {{"ended_by", ended_by}, {"duration_s", duration}}});
     for (auto& c : children_) c.agent->finish(duration);
     // Debriefing.
@@ -658,7 +661,9 @@ class Episode {
         }
         body_->look_at(*look->point);
         robot_gaze_point_ = *look->point;
-        log_.emit({now(), "robot", "look_at", {{"x", look->point->x()}, {"y", look->point->y()}, {"z", look->point->z()}}});
+        nlohmann::json data{{"x", look->point->x()}, {"y", look->point->y()}, {"z", look->point->z()}};
+        if (robot_gaze_.kind == RobotGaze::Kind::Item) data["item"] = robot_gaze_.target;  // the item looked at
+        log_.emit({now(), "robot", "look_at", std::move(data)});
       }
     } else if (const auto* point = std::get_if<policies::PointAt>(&action)) {
       count_action("point", t);
@@ -711,16 +716,26 @@ class Episode {
                         {"reason", outcome.reason()},
                         {"target_in_reach", outcome.target_in_reach},
                         {"poses", outcome.poses_sent}};
+    // The measurements go into the event too, so that a recording holds every metric (freeplay replay).
     if (outcome.plan.ok) {
       path_lengths_m_.push_back(outcome.plan.metrics.path_length_m);
       clearances_mm_.push_back(outcome.plan.metrics.min_clearance_m * 1000.0);
+      data["path_length_m"] = path_lengths_m_.back();
+      data["min_clearance_mm"] = clearances_mm_.back();
     }
     if (outcome.sync.samples > 0) {
       sync_mean_mm_.push_back(outcome.sync.mean_error_m * 1000.0);
       sync_max_mm_ = std::max(sync_max_mm_, outcome.sync.max_error_m * 1000.0);
       sync_lag_ms_.push_back(outcome.sync.best_lag_s * 1000.0);
+      data["sync_error_mm_mean"] = sync_mean_mm_.back();
+      data["sync_error_mm_max"] = outcome.sync.max_error_m * 1000.0;
+      data["sync_lag_ms"] = sync_lag_ms_.back();
     }
-    if (outcome.poses_sent > 0) move_durations_s_.push_back(outcome.execution_duration_s);
+    if (outcome.poses_sent > 0) {
+      move_durations_s_.push_back(outcome.execution_duration_s);
+      data["duration_s"] = outcome.execution_duration_s;
+    }
+    data["stolen_by_child"] = outcome.stolen_by_child;
     switch (status) {
       case planning::MoveStatus::Succeeded:
         result.kind = policies::ActionResult::Kind::MoveSucceeded;
@@ -870,7 +885,7 @@ class Episode {
     metrics["child_touches_per_min"] = child_touches / minutes;
     metrics["child_item_moves_per_min"] = child_moves / minutes;
     metrics["zone_transitions"] = zone_transitions_;
-    metrics["drawing_coverage"] = tray_.drawing_coverage();
+    metrics["drawing_coverage"] = drawing_coverage_;
     metrics["mutual_gaze_s"] = mutual_gaze_s_;
     metrics["joint_attention_episodes"] = joint_attention_episodes_;
     if (child_robot_) {
@@ -952,6 +967,8 @@ class Episode {
   int taken_by_child_ = 0;
   int zone_transitions_ = 0;
   double mutual_gaze_s_ = 0.0;
+  cv::Mat freeplay_map_;          // the background published when free play started (the bare map)
+  double drawing_coverage_ = 0.0;  // share of the map drawn over in the last background published in free play
   int joint_attention_episodes_ = 0;
   bool joint_attention_ = false;
   double awaiting_response_since_ = -1.0;

@@ -143,14 +143,19 @@ void DrawingCanvas::touch() {
   hash_cache_.reset();
 }
 
-double DrawingCanvas::coverage() const {
-  std::size_t differing = 0;
-  for (int row = 0; row < image_.rows; ++row) {
-    const auto* a = image_.ptr<cv::Vec3b>(row);
-    const auto* b = background_.ptr<cv::Vec3b>(row);
-    for (int col = 0; col < image_.cols; ++col) differing += a[col] != b[col] ? 1u : 0u;
+double DrawingCanvas::coverage() const { return differing_pixel_share(image_, background_); }
+
+double differing_pixel_share(const cv::Mat& image, const cv::Mat& background) {
+  if (image.type() != CV_8UC3 || background.type() != CV_8UC3 || image.size() != background.size() || image.empty()) {
+    throw InputError("comparing a drawing needs two BGR images of one size", "image", "CV_8UC3, same size");
   }
-  return static_cast<double>(differing) / static_cast<double>(image_.total());
+  std::size_t differing = 0;
+  for (int row = 0; row < image.rows; ++row) {
+    const auto* a = image.ptr<cv::Vec3b>(row);
+    const auto* b = background.ptr<cv::Vec3b>(row);
+    for (int col = 0; col < image.cols; ++col) differing += a[col] != b[col] ? 1u : 0u;
+  }
+  return static_cast<double>(differing) / static_cast<double>(image.total());
 }
 
 std::uint64_t DrawingCanvas::hash() const {

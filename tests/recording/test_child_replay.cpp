@@ -152,22 +152,22 @@ TEST(ChildReplay, BadSessionFoldersGiveClearErrors) {
 
 TEST(RobotLinks, LinkFramesEqualTheStageBodiesForTheRecordedJoints) {
   const auto& s = child_robot();
-  rosbag::Bag bag;
+  Bag bag;
   open_session_bag(s.dir, bag);
   // A joint state while the arm streams a move (the last /poses stamp) and, at its stamp, the Nao's links.
   ros::Time stamp;
-  for (const auto& m : rosbag::View(bag, rosbag::TopicQuery(topics::kPoses))) stamp = m.getTime();
+  for (const auto& m : rosbag::View(bag.get(), rosbag::TopicQuery(topics::kPoses))) stamp = m.getTime();
   ASSERT_FALSE(stamp.isZero()) << "the recorded robot should have moved an item";
   std::vector<std::string> names;
   std::vector<double> positions;
-  for (const auto& m : rosbag::View(bag, rosbag::TopicQuery(topics::kJointStates), stamp, stamp)) {
+  for (const auto& m : rosbag::View(bag.get(), rosbag::TopicQuery(topics::kJointStates), stamp, stamp)) {
     const auto js = m.instantiate<msg::JointState>();
     for (const auto& n : js->name) names.push_back(std_string(n));
     positions.assign(js->position.begin(), js->position.end());
   }
   ASSERT_EQ(names.size(), 26U);
   std::map<std::string, std::pair<std::string, Eigen::Isometry3d>> links;  // child → (parent, parent_T_child)
-  for (const auto& m : rosbag::View(bag, rosbag::TopicQuery(topics::kTf), stamp, stamp)) {
+  for (const auto& m : rosbag::View(bag.get(), rosbag::TopicQuery(topics::kTf), stamp, stamp)) {
     const auto tf = m.instantiate<msg::TFMessage>();  // keeps the message alive
       for (const auto& x : tf->transforms) {
       Eigen::Isometry3d T = Eigen::Isometry3d::Identity();

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -38,14 +39,15 @@ struct SessionRecording {
   std::vector<std::pair<double, std::vector<RecordedZone>>> zones;  ///< /zones messages in time order
   std::string annotations_yaml;                                ///< /freeplay/annotations (empty when interrupted)
   std::vector<std::string> interaction_events;                 ///< /sandtray/interaction_events in order
+  std::vector<std::pair<double, std::vector<std::uint8_t>>> backgrounds;  ///< background PNGs in time order
 };
 
 /// Reads `path` (a session folder or a bag file; `freeplay.bag`, else `freeplay.bag.active`); InputError when no
 /// readable bag is there (an unindexed bag: the message says to run `rosbag reindex`).
 SessionRecording read_session(const std::filesystem::path& path);
 
-/// Recomputes, from a recording, the metrics that the events, poses, zones and annotations determine, with the
-/// names and arithmetic of episodes.jsonl: {"duration_s", "metrics": {...}, "extra": {...}}.
+/// Recomputes every metric of an episode record from its recording (events, item poses, zones, backgrounds and
+/// annotations), with the names and arithmetic of episodes.jsonl: {"duration_s", "metrics": {...}, "extra": {...}}.
 nlohmann::json recompute_metrics(const SessionRecording& recording);
 
 /// One metric compared with the episode record.
@@ -56,7 +58,8 @@ struct MetricComparison {
   bool equal = false;      ///< identical values (both NaN counts as equal)
 };
 
-/// Compares every recomputed metric (and duration_s) with the same names in an episodes.jsonl record.
+/// Compares every recomputed metric (and duration_s) with the same names in an episodes.jsonl record; a metric of
+/// the record that was not recomputed is listed too, as not equal (NaN replayed).
 std::vector<MetricComparison> compare_with_record(const nlohmann::json& recomputed, const nlohmann::json& record);
 
 /// Flattens nested JSON numbers into dotted names.

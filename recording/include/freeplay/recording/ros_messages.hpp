@@ -3,6 +3,7 @@
 // `ContainerAllocator::rebind`, which std::allocator lost in C++20, so every message is instantiated with
 // RosAllocator (std::allocator plus rebind). The bag stores the standard type names, MD5 sums and definitions.
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -73,8 +74,31 @@ ros::Time ros_time(double t);
 /// Sandtray time (s) of a ROS time.
 double sandtray_time(const ros::Time& stamp);
 
+/// A rosbag::Bag that may be made, opened, closed and destroyed from several threads at once: Debian's rosbag loads
+/// its encryptor plugin through class_loader, which is not thread-safe (parallel recordings crashed), so those four
+/// steps hold one process-wide lock. Reading and writing an open bag need no lock.
+class Bag {
+ public:
+  /// An unopened bag.
+  Bag();
+  /// Closes the bag if it is open.
+  ~Bag();
+  Bag(const Bag&) = delete;
+  Bag& operator=(const Bag&) = delete;
+
+  /// Opens `path` in `mode` (rosbag::bagmode); rosbag's exceptions pass through.
+  void open(const std::string& path, std::uint32_t mode);
+  /// Closes the bag (writes the index when writing).
+  void close();
+  /// The rosbag bag, for writing and for rosbag::View.
+  rosbag::Bag& get() { return *bag_; }
+
+ private:
+  std::unique_ptr<rosbag::Bag> bag_;
+};
+
 /// Opens the bag of a session folder (`freeplay.bag`, else `freeplay.bag.active`) or a bag file for reading and
 /// returns its path; InputError when there is none or it is unreadable (unindexed: says to run `rosbag reindex`).
-std::filesystem::path open_session_bag(const std::filesystem::path& path, rosbag::Bag& bag);
+std::filesystem::path open_session_bag(const std::filesystem::path& path, Bag& bag);
 
 }  // namespace freeplay::recording

@@ -72,4 +72,7 @@ class DrawingCanvas {
   mutable std::optional<std::uint64_t> hash_cache_;
 };
 
+/// Fraction of pixels where two BGR CV_8UC3 images of one size differ (a drawing's coverage of its background).
+double differing_pixel_share(const cv::Mat& image, const cv::Mat& background);
+
 }  // namespace freeplay::sim
