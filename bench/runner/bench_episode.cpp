@@ -13,10 +13,7 @@ using namespace freeplay::runner;
 
 namespace {
 
-const SharedModels& models() {
-  static const SharedModels m = SharedModels::load_default();
-  return m;
-}
+const SharedModels& models() { return SharedModels::shipped(); }
 
 void run_scenario(benchmark::State& state, const char* file) {
   const auto scenario = load_scenario(std::string(FREEPLAY_SCENARIOS_DIR) + "/" + file);

@@ -583,28 +583,26 @@ class ControllerEpisode {
     metrics["moves"]["failed"] = moves_failed_;
     metrics["placement_error_mm"] = mean_of(placement_errors_mm_);
     metrics["trace_hash"] = fmt::format("{:016x}", trace_.hash());
-    return {{"kind", "controller"},
-            {"duration_s", time()},
-            {"ended_by", "sequence"},
-            {"robot_mode", spec_.mode},
-            {"planner", scenario_.planner},
-            {"controller", {{"speed_fraction", spec_.speed_fraction},
-                            {"torque_fraction", spec_.torque_fraction},
-                            {"trace_interval_steps", spec_.trace_interval_steps},
-                            {"self_collision_pairs", collisions_.pairs()}}},
-            {"self_collisions", collisions_.hit()},
-            {"joint_limit_margin_joint", limit_margin_joint_},
-            {"peak_velocity_at", peak_velocity_at_},
-            {"peak_torque_at", peak_torque_at_},
-            {"trace_hash", fmt::format("{:016x}", trace_.hash())},
-            {"trace_checkpoints", trace_.checkpoints.size()},
-            {"trace_machine", trace_.machine},
-            {"targets", per_target_},
-            {"events", log_.size()},
-            {"event_log_hash", fmt::format("{:016x}", log_.hash())},
-            {"gl_renderer", nullptr},
-            {"libraries", library_versions()},
-            {"metrics", metrics}};
+    auto record = provenance_fields(log_);
+    record.update({{"kind", "controller"},
+                   {"duration_s", time()},
+                   {"ended_by", "sequence"},
+                   {"robot_mode", spec_.mode},
+                   {"planner", scenario_.planner},
+                   {"controller", {{"speed_fraction", spec_.speed_fraction},
+                                   {"torque_fraction", spec_.torque_fraction},
+                                   {"trace_interval_steps", spec_.trace_interval_steps},
+                                   {"self_collision_pairs", collisions_.pairs()}}},
+                   {"self_collisions", collisions_.hit()},
+                   {"joint_limit_margin_joint", limit_margin_joint_},
+                   {"peak_velocity_at", peak_velocity_at_},
+                   {"peak_torque_at", peak_torque_at_},
+                   {"trace_hash", fmt::format("{:016x}", trace_.hash())},
+                   {"trace_checkpoints", trace_.checkpoints.size()},
+                   {"trace_machine", trace_.machine},
+                   {"targets", per_target_},
+                   {"metrics", metrics}});
+    return record;
   }
 
   const Scenario& scenario_;

@@ -918,16 +918,14 @@ class Episode {
       children[c.seat_name] = profile_json(c.agent->profile());
       children[c.seat_name]["quit_time_s"] = c.agent->quit_time();
     }
-    return {{"duration_s", duration},
-            {"ended_by", ended_by},
-            {"children", children},
-            {"robot_mode", child_robot_ ? scenario_.robot_mode : ""},
-            {"planner", child_robot_ ? scenario_.planner : ""},
-            {"events", log_.size()},
-            {"event_log_hash", fmt::format("{:016x}", log_.hash())},
-            {"gl_renderer", nullptr},
-            {"libraries", library_versions()},
-            {"metrics", metrics}};
+    auto out = provenance_fields(log_);
+    out.update({{"duration_s", duration},
+                {"ended_by", ended_by},
+                {"children", children},
+                {"robot_mode", child_robot_ ? scenario_.robot_mode : ""},
+                {"planner", child_robot_ ? scenario_.planner : ""},
+                {"metrics", metrics}});
+    return out;
   }
 
   const Scenario& scenario_;

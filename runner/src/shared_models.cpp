@@ -73,6 +73,11 @@ class StageRobotBody final : public RobotBody {
 
 }  // namespace
 
+const SharedModels& SharedModels::shipped() {
+  static const SharedModels models = load_default();
+  return models;
+}
+
 SharedModels SharedModels::load_default() {
   SharedModels m;
   m.catalogue = std::make_shared<const sim::ItemCatalogue>(sim::ItemCatalogue::load_default());

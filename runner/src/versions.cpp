@@ -23,4 +23,11 @@ nlohmann::json library_versions() {
           {"eigen", fmt::format("{}.{}.{}", EIGEN_WORLD_VERSION, EIGEN_MAJOR_VERSION, EIGEN_MINOR_VERSION)}};
 }
 
+nlohmann::json provenance_fields(const EventLog& log) {
+  return {{"events", log.size()},
+          {"event_log_hash", fmt::format("{:016x}", log.hash())},
+          {"gl_renderer", nullptr},
+          {"libraries", library_versions()}};
+}
+
 }  // namespace freeplay::runner

@@ -17,10 +17,7 @@ using namespace freeplay::recording;
 
 namespace {
 
-const runner::SharedModels& models() {
-  static const runner::SharedModels m = runner::SharedModels::load_default();
-  return m;
-}
+const runner::SharedModels& models() { return runner::SharedModels::shipped(); }
 
 runner::Scenario short_session(const std::string& condition) {
   return runner::scenario_from_document(parse_yaml(

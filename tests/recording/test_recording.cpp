@@ -21,10 +21,7 @@ using namespace freeplay::recording;
 
 namespace {
 
-const runner::SharedModels& models() {
-  static const runner::SharedModels m = runner::SharedModels::load_default();
-  return m;
-}
+const runner::SharedModels& models() { return runner::SharedModels::shipped(); }
 
 // The tiny protocol of the brief: greeting 1 s, tutorial 1 s, free play 10 s, debriefing 1 s.
 runner::Scenario tiny(const std::string& condition, const std::string& extra = "", double freeplay_cap_s = 10) {

@@ -20,10 +20,7 @@ using namespace freeplay::runner;
 
 namespace {
 
-const SharedModels& models() {
-  static const SharedModels m = SharedModels::load_default();
-  return m;
-}
+const SharedModels& models() { return SharedModels::shipped(); }
 
 // The brief's short protocol: greeting 2 s, tutorial 2 s, free play up to 20 s, debriefing 2 s.
 Scenario short_scenario(const std::string& condition, const std::string& cameras, double cap = 20.0) {

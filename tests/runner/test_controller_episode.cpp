@@ -16,10 +16,7 @@
 namespace freeplay::runner {
 namespace {
 
-const SharedModels& models() {
-  static const SharedModels m = SharedModels::load_default();
-  return m;
-}
+const SharedModels& models() { return SharedModels::shipped(); }
 
 Scenario controller_scenario(const std::string& targets, const std::string& extra = "") {
   const std::string text = "name: test-controller\nkind: controller\nseed: 3\ncontroller:\n  mode: dynamic\n" + extra +

@@ -14,10 +14,7 @@ using namespace freeplay::runner;
 
 namespace {
 
-const SharedModels& models() {
-  static const SharedModels m = SharedModels::load_default();
-  return m;
-}
+const SharedModels& models() { return SharedModels::shipped(); }
 
 // Short free play (the children usually quit later) keeps these tests fast; the protocol stages are free.
 Scenario scenario(const std::string& condition, const std::string& policy = "asocial", double cap_s = 240) {

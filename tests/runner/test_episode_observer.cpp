@@ -9,10 +9,7 @@ using namespace freeplay::runner;
 
 namespace {
 
-const SharedModels& models() {
-  static const SharedModels m = SharedModels::load_default();
-  return m;
-}
+const SharedModels& models() { return SharedModels::shipped(); }
 
 Scenario short_scenario(const std::string& condition) {
   const std::string text = fmt::format(

@@ -30,6 +30,8 @@ struct SharedModels {
 
   /// The shipped catalogue, child model and the default robot body.
   static SharedModels load_default();
+  /// The shipped models, loaded once per process on first use (thread-safe): for tests, benchmarks and tools.
+  static const SharedModels& shipped();
 };
 
 /// Everything one episode produced.
