@@ -145,6 +145,11 @@ void replay(const ReplayOptions& o) {
     };
     row("duration_s", recomputed.value("duration_s", std::nan("")));
     for (const auto& [name, value] : replayed) row(name, value);
+    for (const auto& c : comparison) {  // in the record, but the bag does not hold what it needs (an older session)
+      if (c.name != "duration_s" && !replayed.contains(c.name)) {
+        std::cout << fmt::format("{:<52} {:>12} {:>12}  {}\n", c.name, "-", number(c.recorded), "NOT IN BAG");
+      }
+    }
     for (const auto& [message, count] : recomputed["extra"]["interaction_events"].items()) {
       std::cout << fmt::format("{:<52} {:>12}\n", "interaction_events." + message, count.get<int>());
     }

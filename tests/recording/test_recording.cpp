@@ -508,3 +508,21 @@ TEST(BagRecorder, EpisodesRecordInParallelThreads) {
     EXPECT_EQ(colour.size(), 1U);
   }
 }
+
+TEST(Replay, AMetricTheBagCannotSupplyIsReportedAsDiffering) {
+  const nlohmann::json recomputed = {{"duration_s", 10.0}, {"metrics", {{"zone_transitions", 2}}}};
+  const nlohmann::json record = {{"duration_s", 10.0}, {"metrics", {{"zone_transitions", 2}, {"new_metric", 1.5}}}};
+  const auto comparison = compare_with_record(recomputed, record);
+  ASSERT_EQ(comparison.size(), 3U);
+  int equal = 0;
+  for (const auto& c : comparison) {
+    if (c.name == "metrics.new_metric") {
+      EXPECT_FALSE(c.equal);
+      EXPECT_TRUE(std::isnan(c.replayed));
+      EXPECT_EQ(c.recorded, 1.5);
+    } else {
+      equal += c.equal ? 1 : 0;
+    }
+  }
+  EXPECT_EQ(equal, 2);
+}
