@@ -74,11 +74,9 @@ void replay_children(const ReplayOptions& o) {
   folder.append(record);
 
   auto before = episode_record(o.session);
-  const auto before_metrics = recording::flatten_numbers(
-      before ? before->value("metrics", nlohmann::json::object())
-             : recording::recompute_metrics(recording::read_session(o.session)).value("metrics", nlohmann::json::object()),
-      "metrics");
-  const auto after_metrics = recording::flatten_numbers(record.value("metrics", nlohmann::json::object()), "metrics");
+  const auto before_metrics = recording::metric_values(
+      before ? *before : recording::recompute_metrics(recording::read_session(o.session)));
+  const auto after_metrics = recording::metric_values(record);
   if (o.json) {
     std::cout << nlohmann::json{{"run_folder", folder.dir().string()}, {"recorded", before_metrics},
                                 {"replayed", after_metrics}}
@@ -133,7 +131,7 @@ void replay(const ReplayOptions& o) {
     std::cout << fmt::format("{}: {:.1f} s recorded, {} topics, {} events{}\n", recording.bag.string(),
                              recording.end_s - recording.start_s, recording.topic_counts.size(), recording.events.size(),
                              recomputed["extra"]["complete"].get<bool>() ? "" : " (INCOMPLETE recording)");
-    const auto replayed = recording::flatten_numbers(recomputed.value("metrics", nlohmann::json::object()), "metrics");
+    const auto replayed = recording::metric_values(recomputed);
     std::map<std::string, const recording::MetricComparison*> by_name;
     for (const auto& c : comparison) by_name[c.name] = &c;
     std::cout << fmt::format("{:<52} {:>12} {:>12}  {}\n", "metric", "from bag", "episodes.jsonl", "");

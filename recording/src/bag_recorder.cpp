@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <deque>
+#include <exception>
 #include <functional>
 #include <future>
 #include <map>
@@ -236,16 +237,16 @@ struct BagRecorder::Impl {
   void close_bag() {
     if (!open) return;
     open = false;
+    std::exception_ptr encoding_error;  // an image that failed to encode: close what was written, then report it
     try {
       flush(true);
-    } catch (...) {  // an image that failed to encode: close what was written, then report it
+    } catch (...) {
+      encoding_error = std::current_exception();
       pending.clear();
-      bag.close();
-      std::filesystem::rename(paths.active_bag, paths.bag);
-      throw;
     }
     bag.close();
     std::filesystem::rename(paths.active_bag, paths.bag);
+    if (encoding_error) std::rethrow_exception(encoding_error);
   }
 
   void write_tf(double t, const runner::EpisodeSnapshot& s) {

@@ -6,14 +6,15 @@
 #include <limits>
 #include <map>
 #include <opencv2/imgcodecs.hpp>
-#include <optional>
 #include <set>
 
 #include "freeplay/agents/annotations.hpp"
 #include "freeplay/agents/perception.hpp"
 #include "freeplay/core/error.hpp"
+#include "freeplay/core/statistics.hpp"
 #include "freeplay/recording/bag_recorder.hpp"
 #include "freeplay/recording/ros_messages.hpp"
+#include "freeplay/runner/summary.hpp"
 #include "freeplay/sim/canvas.hpp"
 
 namespace freeplay::recording {
@@ -25,11 +26,13 @@ constexpr double kTickS = 0.1;
 constexpr double kMinMoveM = 0.02;
 constexpr double kTakenWindowS = 30.0;
 
-double mean_or_nan(const std::vector<double>& v) {
-  if (v.empty()) return std::nan("");
-  double s = 0.0;
-  for (const double x : v) s += x;
-  return s / static_cast<double>(v.size());
+/// An item's position on the game's /tf at a tick; InputError when the recording lacks it.
+Vec2 item_position(const SessionRecording& rec, double tick, const std::string& item) {
+  const auto it = rec.item_positions.find(tick);
+  if (it == rec.item_positions.end() || !it->second.contains(item)) {
+    throw InputError(fmt::format("no /tf pose of '{}' at t = {} s", item, tick), "/tf", "a complete recording");
+  }
+  return it->second.at(item);
 }
 
 /// What the episode loop measures tick by tick in free play, and the robot's move reports, rebuilt from a recording.
@@ -87,11 +90,6 @@ FreeplayReplay replay_freeplay(const SessionRecording& rec, double freeplay_star
   std::map<std::string, Vec2> move_targets;  // item → the target of its last move_goal
   std::map<std::string, Vec2> pending_placement;
   std::size_t next = 0;
-  auto position_at = [&](double tick, const std::string& item) -> std::optional<Vec2> {
-    const auto it = rec.item_positions.find(tick);
-    if (it == rec.item_positions.end() || !it->second.contains(item)) return std::nullopt;
-    return it->second.at(item);
-  };
   auto apply = [&](const RecordedEvent& recorded) {
     const auto& e = recorded.event;
     if (e.source.rfind("child.", 0) == 0 && e.type == "gaze") {
@@ -123,7 +121,7 @@ FreeplayReplay replay_freeplay(const SessionRecording& rec, double freeplay_star
       const auto item = message.substr(10);
       const auto target = pending_placement.find(item);
       if (target == pending_placement.end()) return;
-      if (const auto at = position_at(recorded.tick, item)) out.placement_errors_mm.push_back((*at - target->second).norm() * 1000.0);
+      out.placement_errors_mm.push_back((item_position(rec, recorded.tick, item) - target->second).norm() * 1000.0);
       pending_placement.erase(target);
     }
   };
@@ -267,13 +265,6 @@ nlohmann::json recompute_metrics(const SessionRecording& rec) {
     if (annotations.yellow) child_robot = false;
   }
 
-  auto position_at = [&](double tick, const std::string& item) -> Vec2 {
-    const auto it = rec.item_positions.find(tick);
-    if (it == rec.item_positions.end() || !it->second.contains(item)) {
-      throw InputError(fmt::format("no /tf pose of '{}' at t = {} s", item, tick), "/tf", "a complete recording");
-    }
-    return it->second.at(item);
-  };
   auto zone_at = [&](double tick, const Vec2& p) -> std::string {
     const std::vector<RecordedZone>* zones = nullptr;
     for (const auto& [t, z] : rec.zones) {
@@ -352,7 +343,7 @@ nlohmann::json recompute_metrics(const SessionRecording& rec) {
       const auto item = e.data.value("item", "");
       const auto mover = mover_of(e.data);
       auto& h = history[item];
-      h.grabbed_at = position_at(tick, item);
+      h.grabbed_at = item_position(rec, tick, item);
       h.zone_at_grab = zone_at(tick, h.grabbed_at);
       const bool recently_other = !h.last_mover.empty() && h.last_mover != mover && t - h.last_move_t < kTakenWindowS;
       bool shared_with_robot = false;
@@ -367,7 +358,7 @@ nlohmann::json recompute_metrics(const SessionRecording& rec) {
       const auto item = e.data.value("item", "");
       const auto mover = mover_of(e.data);
       auto& h = history[item];
-      const Vec2 at = position_at(tick, item);
+      const Vec2 at = item_position(rec, tick, item);
       if ((at - h.grabbed_at).norm() < kMinMoveM) continue;
       h.last_mover = mover;
       h.last_move_t = t;
@@ -407,20 +398,20 @@ nlohmann::json recompute_metrics(const SessionRecording& rec) {
     metrics["robot_item_moves_per_min"] = robot_item_moves / minutes;
     metrics["items_taken_by_robot_from_child"] = taken_by_robot;
     metrics["items_taken_by_child_from_robot"] = taken_by_child;
-    metrics["robot_response_latency_s"] = mean_or_nan(latencies);
+    metrics["robot_response_latency_s"] = freeplay::mean(latencies);
     metrics["planner"]["moves_started"] = moves_started;
     metrics["planner"]["success_rate"] =
         moves_started > 0 ? static_cast<double>(moves_succeeded) / moves_started : std::nan("");
     metrics["planner"]["moves_failed"] = moves_failed;
     metrics["planner"]["moves_cancelled"] = moves_cancelled;
-    metrics["planner"]["path_length_m"] = mean_or_nan(freeplay.path_lengths_m);
-    metrics["planner"]["min_clearance_mm"] = mean_or_nan(freeplay.clearances_mm);
+    metrics["planner"]["path_length_m"] = freeplay::mean(freeplay.path_lengths_m);
+    metrics["planner"]["min_clearance_mm"] = freeplay::mean(freeplay.clearances_mm);
     metrics["executor"]["moves_stolen_by_child"] = freeplay.moves_stolen;
-    metrics["executor"]["move_duration_s"] = mean_or_nan(freeplay.move_durations_s);
-    metrics["executor"]["placement_error_mm"] = mean_or_nan(freeplay.placement_errors_mm);
-    metrics["executor"]["sync_error_mm_mean"] = mean_or_nan(freeplay.sync_mean_mm);
+    metrics["executor"]["move_duration_s"] = freeplay::mean(freeplay.move_durations_s);
+    metrics["executor"]["placement_error_mm"] = freeplay::mean(freeplay.placement_errors_mm);
+    metrics["executor"]["sync_error_mm_mean"] = freeplay::mean(freeplay.sync_mean_mm);
     metrics["executor"]["sync_error_mm_max"] = freeplay.sync_mean_mm.empty() ? std::nan("") : freeplay.sync_max_mm;
-    metrics["executor"]["sync_lag_ms"] = mean_or_nan(freeplay.sync_lag_ms);
+    metrics["executor"]["sync_lag_ms"] = freeplay::mean(freeplay.sync_lag_ms);
   }
   nlohmann::json extra;
   extra["events"] = rec.events.size();
@@ -430,25 +421,14 @@ nlohmann::json recompute_metrics(const SessionRecording& rec) {
   return {{"duration_s", duration}, {"metrics", metrics}, {"extra", extra}};
 }
 
-std::map<std::string, double> flatten_numbers(const nlohmann::json& json, const std::string& prefix) {
-  std::map<std::string, double> out;
-  if (json.is_object()) {
-    for (const auto& [key, value] : json.items()) {
-      auto inner = flatten_numbers(value, prefix.empty() ? key : prefix + "." + key);
-      out.insert(inner.begin(), inner.end());
-    }
-  } else if (json.is_number()) {
-    out[prefix] = json.get<double>();
-  } else if (json.is_null() && !prefix.empty()) {
-    out[prefix] = std::nan("");  // nlohmann writes NaN as null
-  }
-  return out;
+std::map<std::string, double> metric_values(const nlohmann::json& record) {
+  return runner::flatten_numbers(record.value("metrics", nlohmann::json::object()), "metrics", runner::NullLeaves::as_nan);
 }
 
 std::vector<MetricComparison> compare_with_record(const nlohmann::json& recomputed, const nlohmann::json& record) {
-  auto replayed = flatten_numbers(recomputed.value("metrics", nlohmann::json::object()), "metrics");
+  auto replayed = metric_values(recomputed);
   replayed["duration_s"] = recomputed.value("duration_s", std::nan(""));
-  auto recorded = flatten_numbers(record.value("metrics", nlohmann::json::object()), "metrics");
+  auto recorded = metric_values(record);
   if (record.contains("duration_s")) recorded["duration_s"] = record["duration_s"].get<double>();
   std::vector<MetricComparison> out;
   for (const auto& [name, value] : replayed) {

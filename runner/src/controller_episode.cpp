@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "freeplay/core/error.hpp"
+#include "freeplay/core/statistics.hpp"
 #include "freeplay/core/rng.hpp"
 #include "freeplay/planning/move_executor.hpp"
 #include "freeplay/planning/plan.hpp"
@@ -158,13 +159,6 @@ class SelfCollisionChecker {
   std::vector<bool> colliding_;
   std::set<std::string> hit_;
 };
-
-double mean_of(const std::vector<double>& v) {
-  if (v.empty()) return kNaN;
-  double s = 0.0;
-  for (const double x : v) s += x;
-  return s / static_cast<double>(v.size());
-}
 
 double max_of(const std::vector<double>& v) {
   if (v.empty()) return kNaN;
@@ -560,15 +554,15 @@ class ControllerEpisode {
   nlohmann::json record() {
     nlohmann::json metrics;
     metrics["targets"] = targets_.size();
-    metrics["fingertip_error_mm"]["mean"] = mean_of(fingertip_errors_mm_);
+    metrics["fingertip_error_mm"]["mean"] = freeplay::mean(fingertip_errors_mm_);
     metrics["fingertip_error_mm"]["max"] = max_of(fingertip_errors_mm_);
     metrics["fingertip_error_mm"]["reachable_max"] = max_of(reachable_errors_mm_);
-    metrics["gaze_error_deg"]["mean"] = mean_of(gaze_errors_deg_);
+    metrics["gaze_error_deg"]["mean"] = freeplay::mean(gaze_errors_deg_);
     metrics["gaze_error_deg"]["max"] = max_of(gaze_errors_deg_);
     metrics["gaze_error_deg"]["unclamped_max"] = max_of(unclamped_gaze_errors_deg_);
-    metrics["sync"]["error_mm_mean"] = mean_of(sync_mean_mm_);
+    metrics["sync"]["error_mm_mean"] = freeplay::mean(sync_mean_mm_);
     metrics["sync"]["error_mm_max"] = max_of(sync_max_mm_);
-    metrics["sync"]["lag_ms"] = mean_of(sync_lag_ms_);
+    metrics["sync"]["lag_ms"] = freeplay::mean(sync_lag_ms_);
     metrics["joint_limit_margin_rad"] = limit_margin_;
     metrics["peak_velocity_fraction"] = peak_velocity_fraction_;
     metrics["peak_torque_fraction"] = dynamic_ ? peak_torque_fraction_ : kNaN;
@@ -576,12 +570,12 @@ class ControllerEpisode {
     metrics["tracking_error_rad"]["max"] = tracking_max_;
     metrics["self_collisions"]["count"] = collision_onsets_;
     metrics["self_collisions"]["time_s"] = collision_time_s_;
-    metrics["settle_time_s"]["mean"] = mean_of(settle_times_s_);
+    metrics["settle_time_s"]["mean"] = freeplay::mean(settle_times_s_);
     metrics["settle_time_s"]["max"] = max_of(settle_times_s_);
     metrics["unsettled_targets"] = unsettled_;
     metrics["moves"]["succeeded"] = moves_succeeded_;
     metrics["moves"]["failed"] = moves_failed_;
-    metrics["placement_error_mm"] = mean_of(placement_errors_mm_);
+    metrics["placement_error_mm"] = freeplay::mean(placement_errors_mm_);
     metrics["trace_hash"] = fmt::format("{:016x}", trace_.hash());
     auto record = provenance_fields(log_);
     record.update({{"kind", "controller"},

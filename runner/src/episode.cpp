@@ -16,6 +16,7 @@
 #include "freeplay/agents/perception.hpp"
 #include "freeplay/agents/profile.hpp"
 #include "freeplay/core/error.hpp"
+#include "freeplay/core/statistics.hpp"
 #include "freeplay/planning/move_executor.hpp"
 #include "freeplay/planning/plan.hpp"
 #include "freeplay/policies/play_policy.hpp"
@@ -854,13 +855,6 @@ class Episode {
     joint_attention_ = joint;
   }
 
-  static double mean_or_nan(const std::vector<double>& v) {
-    if (v.empty()) return std::nan("");
-    double s = 0.0;
-    for (const double x : v) s += x;
-    return s / static_cast<double>(v.size());
-  }
-
   nlohmann::json record(double duration, const std::string& ended_by, const agents::SessionAnnotations& annotations) {
     const double minutes = std::max(duration / 60.0, 1e-9);
     nlohmann::json metrics;
@@ -899,19 +893,19 @@ class Episode {
       metrics["robot_item_moves_per_min"] = robot_item_moves_ / minutes;
       metrics["items_taken_by_robot_from_child"] = taken_by_robot_;
       metrics["items_taken_by_child_from_robot"] = taken_by_child_;
-      metrics["robot_response_latency_s"] = mean_or_nan(response_latencies_);
+      metrics["robot_response_latency_s"] = freeplay::mean(response_latencies_);
       metrics["planner"]["moves_started"] = moves_started_;
       metrics["planner"]["success_rate"] = moves_started_ > 0 ? static_cast<double>(moves_succeeded_) / moves_started_ : std::nan("");
       metrics["planner"]["moves_failed"] = moves_failed_;
       metrics["planner"]["moves_cancelled"] = moves_cancelled_;
-      metrics["planner"]["path_length_m"] = mean_or_nan(path_lengths_m_);
-      metrics["planner"]["min_clearance_mm"] = mean_or_nan(clearances_mm_);
+      metrics["planner"]["path_length_m"] = freeplay::mean(path_lengths_m_);
+      metrics["planner"]["min_clearance_mm"] = freeplay::mean(clearances_mm_);
       metrics["executor"]["moves_stolen_by_child"] = moves_stolen_;
-      metrics["executor"]["move_duration_s"] = mean_or_nan(move_durations_s_);
-      metrics["executor"]["placement_error_mm"] = mean_or_nan(placement_errors_mm_);
-      metrics["executor"]["sync_error_mm_mean"] = mean_or_nan(sync_mean_mm_);
+      metrics["executor"]["move_duration_s"] = freeplay::mean(move_durations_s_);
+      metrics["executor"]["placement_error_mm"] = freeplay::mean(placement_errors_mm_);
+      metrics["executor"]["sync_error_mm_mean"] = freeplay::mean(sync_mean_mm_);
       metrics["executor"]["sync_error_mm_max"] = sync_mean_mm_.empty() ? std::nan("") : sync_max_mm_;
-      metrics["executor"]["sync_lag_ms"] = mean_or_nan(sync_lag_ms_);
+      metrics["executor"]["sync_lag_ms"] = freeplay::mean(sync_lag_ms_);
     }
     nlohmann::json children = nlohmann::json::object();
     for (const auto& c : children_) {

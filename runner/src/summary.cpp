@@ -15,17 +15,20 @@ const PinsoroDurations* pinsoro_durations(const std::string& condition) {
   return nullptr;
 }
 
-std::map<std::string, double> flatten_numbers(const nlohmann::json& value, const std::string& prefix) {
+std::map<std::string, double> flatten_numbers(const nlohmann::json& value, const std::string& prefix,
+                                              NullLeaves nulls) {
   std::map<std::string, double> out;
   if (value.is_object()) {
     for (const auto& [key, child] : value.items()) {
-      auto nested = flatten_numbers(child, prefix.empty() ? key : prefix + "." + key);
+      auto nested = flatten_numbers(child, prefix.empty() ? key : prefix + "." + key, nulls);
       out.insert(nested.begin(), nested.end());
     }
   } else if (value.is_number()) {
     out[prefix] = value.get<double>();
   } else if (value.is_boolean()) {
     out[prefix] = value.get<bool>() ? 1.0 : 0.0;
+  } else if (value.is_null() && nulls == NullLeaves::as_nan && !prefix.empty()) {
+    out[prefix] = std::nan("");
   }
   return out;
 }

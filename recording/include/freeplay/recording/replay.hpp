@@ -62,7 +62,7 @@ struct MetricComparison {
 /// the record that was not recomputed is listed too, as not equal (NaN replayed).
 std::vector<MetricComparison> compare_with_record(const nlohmann::json& recomputed, const nlohmann::json& record);
 
-/// Flattens nested JSON numbers into dotted names.
-std::map<std::string, double> flatten_numbers(const nlohmann::json& json, const std::string& prefix = "");
+/// The `metrics` of a record (or of recompute_metrics) as dotted names ("metrics.zone_transitions"), NaN for nulls.
+std::map<std::string, double> metric_values(const nlohmann::json& record);
 
 }  // namespace freeplay::recording

@@ -25,8 +25,12 @@ struct PinsoroDurations {
 /// The PInSoRo reference for "child-child" or "child-robot" (asocial robot); nullptr for other conditions.
 const PinsoroDurations* pinsoro_durations(const std::string& condition);
 
-/// Numeric leaves of a JSON object as dotted keys (e.g. "label_share.purple.cooperative").
-std::map<std::string, double> flatten_numbers(const nlohmann::json& value, const std::string& prefix = {});
+/// What flatten_numbers does with a null leaf (nlohmann writes NaN as null).
+enum class NullLeaves { skip, as_nan };
+
+/// Numeric (and boolean, as 0/1) leaves of a JSON object as dotted keys (e.g. "label_share.purple.cooperative").
+std::map<std::string, double> flatten_numbers(const nlohmann::json& value, const std::string& prefix = {},
+                                              NullLeaves nulls = NullLeaves::skip);
 
 /// One metric summarised over the episodes of one variant.
 struct MetricSummary {
