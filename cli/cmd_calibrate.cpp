@@ -14,6 +14,9 @@
 #include "freeplay/core/assets.hpp"
 #include "freeplay/core/atomic_file.hpp"
 #include "freeplay/core/error.hpp"
+#include "freeplay/runner/population.hpp"
+#include "freeplay/runner/scenario.hpp"
+#include "vocabulary.hpp"
 
 namespace freeplay::cli {
 namespace {
@@ -30,7 +33,54 @@ struct CalibrateOptions {
   int rounds = 3;
   int evaluations = 60;
   int fit_sessions = 120;
+  bool full = false;
+  bool check = false;
+  std::string cc_scenario;
+  std::string cr_scenario;
+  std::vector<std::string> policies;
 };
+
+/// A shipped scenario: `name` in ./scenarios, else beside the assets folder (the repository's scenarios/).
+std::filesystem::path shipped_scenario(const std::string& name) {
+  const std::filesystem::path local = std::filesystem::path("scenarios") / name;
+  if (std::filesystem::exists(local)) return local;
+  return asset_path(".").parent_path().parent_path() / "scenarios" / name;
+}
+
+/// Runs `episodes` full episodes of a scenario (with `overrides`), printing progress on stderr.
+std::vector<agents::SessionResult> full_population(const std::filesystem::path& file,
+                                                   const std::vector<std::string>& overrides, int episodes,
+                                                   std::uint64_t seed, int threads, const runner::SharedModels& models) {
+  std::vector<std::string> sets = overrides;
+  sets.push_back(fmt::format("seed={}", seed));
+  const runner::Scenario scenario = runner::load_scenario(file, sets, scenario_vocabulary());
+  std::string label = scenario.name;
+  for (const auto& o : overrides) label += " " + o;
+  const auto progress = [&](int done) {
+    if (done == episodes || done % 10 == 0) std::cerr << fmt::format("\r{}: {}/{} episodes", label, done, episodes) << std::flush;
+    if (done == episodes) std::cerr << "\n";
+  };
+  return runner::run_population(scenario, episodes, threads, models, progress);
+}
+
+/// Child-robot social-engagement shares of the purple child per policy (the same children: same seeds).
+std::string policy_share_table(const std::vector<std::pair<std::string, agents::PopulationStats>>& by_policy) {
+  std::string out = fmt::format("\nchild-robot social engagement by robot policy (per-child mean share; predictions, not fitted)\n{:<14}",
+                                "label");
+  for (const auto& [policy, stats] : by_policy) out += fmt::format(" {:>10}", policy);
+  out += "\n";
+  const auto s = static_cast<std::size_t>(agents::Axis::SocialEngagement);
+  for (std::size_t j = 0; j < agents::label_count(agents::Axis::SocialEngagement); ++j) {
+    out += fmt::format("{:<14}", agents::label_name(agents::Axis::SocialEngagement, j));
+    for (const auto& entry : by_policy) out += fmt::format(" {:>10.3f}", entry.second.labels.share[s][j]);
+    out += "\n";
+  }
+  out += fmt::format("{:<14}", "duration (min)");
+  for (const auto& entry : by_policy) out += fmt::format(" {:>10.2f}", entry.second.duration.mean_min);
+  out += "\n" + fmt::format("{:<14}", "coder = state");
+  for (const auto& entry : by_policy) out += fmt::format(" {:>10.3f}", entry.second.labels.coder_agreement);
+  return out + "\n";
+}
 
 void run_calibrate(const CalibrateOptions& o) {
   if (o.condition != "cc" && o.condition != "cr" && o.condition != "both") {
@@ -63,12 +113,31 @@ void run_calibrate(const CalibrateOptions& o) {
 
   std::optional<agents::PopulationStats> cc;
   std::optional<agents::PopulationStats> cr;
-  if (o.condition != "cr") {
+  std::vector<std::pair<std::string, agents::PopulationStats>> by_policy;
+  if (o.full) {
+    runner::SharedModels models = runner::SharedModels::shipped();
+    models.child_params = std::make_shared<const agents::ChildModelParams>(params);
+    const std::filesystem::path cc_file = o.cc_scenario.empty() ? shipped_scenario("child-child.yaml") : std::filesystem::path(o.cc_scenario);
+    const std::filesystem::path cr_file =
+        o.cr_scenario.empty() ? shipped_scenario("child-robot-asocial.yaml") : std::filesystem::path(o.cr_scenario);
+    if (o.condition != "cr") {
+      cc = agents::summarise(full_population(cc_file, {}, o.sessions, o.seed, o.threads, models), agents::Condition::ChildChild);
+    }
+    if (o.condition != "cc") {
+      cr = agents::summarise(full_population(cr_file, {}, o.sessions, o.seed, o.threads, models), agents::Condition::ChildRobot);
+      if (!o.policies.empty()) by_policy.emplace_back("scenario's", *cr);
+      for (const auto& policy : o.policies) {
+        by_policy.emplace_back(policy, agents::summarise(full_population(cr_file, {"robot.policy=" + policy},
+                                                                         o.sessions, o.seed, o.threads, models),
+                                                         agents::Condition::ChildRobot));
+      }
+    }
+  } else if (o.condition != "cr") {
     cc = agents::summarise(agents::simulate_population(params, agents::Condition::ChildChild, o.sessions, o.seed,
                                                        o.threads),
                            agents::Condition::ChildChild);
   }
-  if (o.condition != "cc") {
+  if (!o.full && o.condition != "cc") {
     cr = agents::summarise(agents::simulate_population(params, agents::Condition::ChildRobot, o.sessions, o.seed,
                                                        o.threads),
                            agents::Condition::ChildRobot);
@@ -82,13 +151,30 @@ void run_calibrate(const CalibrateOptions& o) {
       out.push_back({{"group", r.group}, {"statistic", r.name}, {"simulated", r.simulated}, {"target", r.target},
                      {"checked", r.checked}, {"lo", r.lo}, {"hi", r.hi}, {"within", r.within()}});
     }
-    std::cout << nlohmann::json{{"sessions", o.sessions}, {"seed", o.seed}, {"outside", outside}, {"rows", out}}.dump(2)
+    nlohmann::json policies = nlohmann::json::object();
+    const auto s = static_cast<std::size_t>(agents::Axis::SocialEngagement);
+    for (const auto& [policy, stats] : by_policy) {
+      for (std::size_t j = 0; j < agents::label_count(agents::Axis::SocialEngagement); ++j) {
+        policies[policy]["social_share"][std::string(agents::label_name(agents::Axis::SocialEngagement, j))] =
+            stats.labels.share[s][j];
+      }
+      policies[policy]["duration_mean_min"] = stats.duration.mean_min;
+      policies[policy]["coder_agreement"] = stats.labels.coder_agreement;
+    }
+    std::cout << nlohmann::json{{"sessions", o.sessions}, {"seed", o.seed},     {"full", o.full},
+                                {"outside", outside},     {"rows", out},        {"policies", policies}}
+                     .dump(2)
               << "\n";
   } else {
-    std::cout << fmt::format("{} sessions per condition, seed {}, parameters {}\n", o.sessions, o.seed,
-                             params_path.string());
+    std::cout << fmt::format("{} sessions per condition ({}), seed {}, parameters {}\n", o.sessions,
+                             o.full ? "full episodes" : "logic-only simulator", o.seed, params_path.string());
     std::cout << agents::format_comparison(rows);
+    if (!by_policy.empty()) std::cout << policy_share_table(by_policy);
     std::cout << fmt::format("{} checked rows outside their bound\n", outside);
+  }
+  if (o.check && outside > 0) {
+    std::cerr << fmt::format("calibration check failed: {} checked rows outside their PInSoRo bound\n", outside);
+    throw CLI::RuntimeError(1);
   }
 }
 
@@ -109,6 +195,15 @@ const RegisterCommand kRegister(60, [](CLI::App& program) {
       ->capture_default_str();
   cmd->add_option("--fit-sessions", options->fit_sessions, "Fit: sessions per condition per evaluation")
       ->capture_default_str();
+  cmd->add_flag("--full", options->full,
+                "Run full episodes (sandtray, policies, planner, robot) instead of the logic-only simulator");
+  cmd->add_flag("--check", options->check, "Exit with status 1 when a checked row lies outside its PInSoRo bound");
+  cmd->add_option("--cc-scenario", options->cc_scenario, "--full: child-child scenario (default scenarios/child-child.yaml)");
+  cmd->add_option("--cr-scenario", options->cr_scenario,
+                  "--full: child-robot scenario (default scenarios/child-robot-asocial.yaml)");
+  cmd->add_option("--policies", options->policies,
+                  "--full: also run the child-robot scenario with these robot policies and print the children's "
+                  "social-engagement shares side by side (e.g. asocial idle social)");
   cmd->callback([options] { run_calibrate(*options); });
 });
 

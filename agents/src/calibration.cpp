@@ -6,6 +6,7 @@
 #include <cmath>
 #include <thread>
 
+#include "freeplay/agents/coder.hpp"
 #include "freeplay/core/rng.hpp"
 
 namespace freeplay::agents {
@@ -39,6 +40,13 @@ constexpr std::array<std::array<double, 5>, 5> kSocialTransitionTarget = {{
 constexpr std::array<double, kAxisCount> kChangesPerMinTarget = {1.54, 1.00, 1.62};
 
 constexpr double kShareTolerance = 0.05;
+/// §8: P(same social label) and cooperative+cooperative share, with the bands of our calibration check.
+constexpr double kDyadSameTarget = 0.876;
+constexpr double kDyadSameLo = 0.75;
+constexpr double kDyadSameHi = 0.95;
+constexpr double kDyadCoopTarget = 0.474;
+constexpr double kDyadCoopLo = 0.35;
+constexpr double kDyadCoopHi = 0.60;
 constexpr double kBoutFactor = 1.5;
 
 double quantile(std::vector<double> values, double q) {
@@ -71,6 +79,46 @@ void add_child(const ChildOutcome& child, double duration_s, LabelStats& stats,
   (void)duration_s;
 }
 
+/// §8 dyadic coupling: both children's social labels sampled every second over the time both are labelled.
+class DyadCoupling {
+ public:
+  void add(const ChildTimeline& a, const ChildTimeline& b, double duration) {
+    std::vector<std::pair<double, std::uint8_t>> sa = social_bouts(a);
+    std::vector<std::pair<double, std::uint8_t>> sb = social_bouts(b);
+    std::size_t ia = 0;
+    std::size_t ib = 0;
+    for (double t = 0.5; t < duration; t += 1.0) {
+      while (ia + 1 < sa.size() && sa[ia + 1].first <= t) ++ia;
+      while (ib + 1 < sb.size() && sb[ib + 1].first <= t) ++ib;
+      if (sa.empty() || sb.empty() || sa[ia].first > t || sb[ib].first > t) continue;
+      ++samples_;
+      if (sa[ia].second == sb[ib].second) {
+        ++same_;
+        ++pair_[sa[ia].second];
+      }
+    }
+  }
+  void finish(LabelStats& l) const {
+    if (samples_ == 0) return;
+    l.dyad_same_social = static_cast<double>(same_) / samples_;
+    for (std::size_t j = 0; j < kMaxLabels; ++j) l.dyad_pair_share[j] = static_cast<double>(pair_[j]) / samples_;
+    l.dyad_cooperative = l.dyad_pair_share[static_cast<std::size_t>(SocialEngagement::Cooperative)];
+  }
+
+ private:
+  static std::vector<std::pair<double, std::uint8_t>> social_bouts(const ChildTimeline& timeline) {
+    std::vector<std::pair<double, std::uint8_t>> out;
+    for (const auto& bout : timeline) {
+      if (bout.axis == Axis::SocialEngagement) out.emplace_back(bout.start, bout.label);
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+  }
+  long samples_ = 0;
+  long same_ = 0;
+  std::array<long, kMaxLabels> pair_{};
+};
+
 std::vector<double> duration_terms(const DurationStats& s, const DurationTarget& t) {
   return {(s.mean_min - t.mean) / (0.1 * t.mean), (s.sd_min - t.sd) / (0.25 * t.sd),
           (s.survival[1] - t.survival[1]) / 0.1, (s.survival[2] - t.survival[2]) / 0.1,
@@ -90,6 +138,13 @@ void add_duration_rows(std::vector<ComparisonRow>& rows, const std::string& grou
                     t.survival[i] - 0.1, t.survival[i] + 0.1, checked});
   }
   rows.push_back({group, "hit 40-min cap", s.cap_fraction, t.cap_fraction, 0, 0, false});
+}
+
+/// What the children met, per child-minute (no targets: shown to explain durations).
+void add_behaviour_rows(std::vector<ComparisonRow>& rows, const std::string& group, const LabelStats& l) {
+  rows.push_back({group, "items taken from the child / min", l.items_taken_per_min, 0, 0, 0, false});
+  rows.push_back({group, "contingent responses / min", l.contingent_per_min, 0, 0, 0, false});
+  rows.push_back({group, "unanswered bids / min", l.unanswered_bids_per_min, 0, 0, 0, false});
 }
 
 /// Nelder–Mead minimisation of `f` from `x0` with initial step `step`, at most `max_evals` evaluations.
@@ -237,7 +292,23 @@ PopulationStats summarise(const std::vector<SessionResult>& sessions, Condition 
   std::array<double, kAxisCount> changes{};
   int children = 0;
   double total_minutes = 0.0;
+  double agreement_sum = 0.0;
+  double agreement_weight = 0.0;
+  double taken = 0.0, contingent = 0.0, unanswered = 0.0;
+  const auto add_agreement = [&](const ChildOutcome& child, double duration) {
+    taken += child.counters.items_taken;
+    contingent += child.counters.contingent_responses;
+    unanswered += child.counters.unanswered_bids;
+    agreement_sum += duration * timeline_agreement(child.timeline, child.internal, Axis::SocialEngagement, duration);
+    agreement_weight += duration;
+  };
+  DyadCoupling dyads;
   for (const SessionResult& s : sessions) {
+    add_agreement(s.purple, s.duration_s);
+    if (s.yellow) {
+      add_agreement(*s.yellow, s.duration_s);
+      dyads.add(s.purple.timeline, s.yellow->timeline, s.duration_s);
+    }
     add_child(s.purple, s.duration_s, l, bout_lengths, transition_counts, changes);
     ++children;
     total_minutes += s.duration_s / 60.0;
@@ -255,6 +326,13 @@ PopulationStats summarise(const std::vector<SessionResult>& sessions, Condition 
     }
     l.changes_per_min[a] = total_minutes > 0.0 ? changes[a] / total_minutes : 0.0;
   }
+  l.coder_agreement = agreement_weight > 0.0 ? agreement_sum / agreement_weight : 0.0;
+  if (total_minutes > 0.0) {
+    l.items_taken_per_min = taken / total_minutes;
+    l.contingent_per_min = contingent / total_minutes;
+    l.unanswered_bids_per_min = unanswered / total_minutes;
+  }
+  dyads.finish(l);
   for (std::size_t i = 0; i < 5; ++i) {
     double row = 0.0;
     for (double c : transition_counts[i]) row += c;
@@ -293,13 +371,31 @@ std::vector<ComparisonRow> compare_with_targets(const PopulationStats* cc, const
     for (std::size_t i = 0; i < 5; ++i) {
       for (std::size_t j = 0; j < 5; ++j) {
         if (i == j) continue;
+        const double t = kSocialTransitionTarget[i][j];
         rows.push_back({"cc social transition",
                         fmt::format("{} -> {}", label_name(Axis::SocialEngagement, i), label_name(Axis::SocialEngagement, j)),
-                        cc->labels.social_transitions[i][j], kSocialTransitionTarget[i][j], 0, 0, false});
+                        cc->labels.social_transitions[i][j], t, t - kTransitionTolerance, t + kTransitionTolerance,
+                        true});
       }
     }
+    rows.push_back({"cc dyad (1-s sampling)", "P(same social label)", cc->labels.dyad_same_social, kDyadSameTarget,
+                    kDyadSameLo, kDyadSameHi, true});
+    rows.push_back({"cc dyad (1-s sampling)", "cooperative+cooperative", cc->labels.dyad_cooperative,
+                    kDyadCoopTarget, kDyadCoopLo, kDyadCoopHi, true});
+    rows.push_back({"cc dyad (1-s sampling)", "parallel+parallel",
+                    cc->labels.dyad_pair_share[static_cast<std::size_t>(SocialEngagement::Parallel)], 0.205, 0, 0,
+                    false});
+    rows.push_back({"cc dyad (1-s sampling)", "associative+associative",
+                    cc->labels.dyad_pair_share[static_cast<std::size_t>(SocialEngagement::Associative)], 0.156, 0, 0,
+                    false});
+    rows.push_back({"cc coder", "coded = internal social label", cc->labels.coder_agreement, 0, 0, 0, false});
+    add_behaviour_rows(rows, "cc behaviour", cc->labels);
   }
-  if (cr) add_duration_rows(rows, "cr duration", cr->duration, kCrDuration);
+  if (cr) {
+    add_duration_rows(rows, "cr duration", cr->duration, kCrDuration);
+    rows.push_back({"cr coder", "coded = internal social label", cr->labels.coder_agreement, 0, 0, 0, false});
+    add_behaviour_rows(rows, "cr behaviour", cr->labels);
+  }
   return rows;
 }
 
@@ -366,9 +462,11 @@ FitResult fit_child_model(const ChildModelParams& start, const FitOptions& optio
         double mean_bias = 0.0;
         for (std::size_t j = 0; j < label_count(axis); ++j) {
           const double sim_share = std::max(cc.labels.share[a][j], 1e-3);
-          m.bias[j] = std::clamp(m.bias[j] + kStep * std::log(kShareTarget[a][j] / sim_share), -15.0, 15.0);
+          const double step = axis == Axis::SocialEngagement ? 0.5 * kStep : kStep;  // coded: an indirect response
+          m.bias[j] = std::clamp(m.bias[j] + step * std::log(kShareTarget[a][j] / sim_share), -15.0, 15.0);
           mean_bias += m.bias[j] / static_cast<double>(label_count(axis));
-          if (cc.labels.bouts[a][j] >= 5) {
+          // Coded social bouts last as the coder's rules make them: the child's dwell times are not matched to them.
+          if (cc.labels.bouts[a][j] >= 5 && axis != Axis::SocialEngagement) {
             const double ratio = kBoutMedianTarget[a][j] / std::max(cc.labels.bout_median_s[a][j], 0.1);
             m.dwell_median_s[j] = std::clamp(m.dwell_median_s[j] * std::pow(ratio, kStep), 0.5, 3600.0);
           }

@@ -56,6 +56,7 @@ ChildAgent::ChildAgent(const ChildModelParams& params, const ChildProfile& profi
   const DriveParams& d = params_->drives;
   motivation_ = std::clamp(rng_.normal(d.initial_motivation_mean, d.initial_motivation_sd), 0.05, 1.0);
   decay_scale_ = std::exp(-d.attention_effect * (2.0 * profile_.attention_span - 1.0));
+  expectation_ = params_->partnership.expectation_prior;
   prev_holder_.fill(HolderView::Nobody);
   mine_until_.fill(-1.0);
   timeline_.reserve(256);
@@ -102,6 +103,7 @@ ChildActions ChildAgent::step(double t, double dt, const ChildPerception& seen) 
   if (motor_.kind == MotorKind::None && !quit_ && t >= next_action_t_) plan_action(t, seen, out);
   run_motor(t, out);
   update_gaze(t, seen, out);
+  answer_partner(t, out);
   update_speech(t, dt, out);
   out.gaze = gaze_;
   out.quit = quit_;
@@ -143,7 +145,10 @@ void ChildAgent::observe(double t, double dt, const ChildPerception& seen) {
     const bool on_my_item = touch.item >= 0 && touch.item == my_last_item_;
     const bool taken = touch.item >= 0 && touch.item == taken_item;
     if (!taken && (near_my_play || on_my_item) && t - my_last_action_t_ < r.react_window_s) {
+      // A joint act answers me only from a partner who attends to me; an indifferent one merely plays nearby.
+      if (partner_attention_ > 0.1) last_answered_t_ = t;
       on_contingent(r.act_weight);
+      on_partner_bid(t, /*joint=*/true, /*spoken=*/false);
       partner_joint_ = std::min(1.0, partner_joint_ + 0.35);
     } else if ((touch.point - my_last_point_).norm() < 2.0 * r.react_distance_m) {
       partner_joint_ = std::min(1.0, partner_joint_ + 0.15);
@@ -154,6 +159,7 @@ void ChildAgent::observe(double t, double dt, const ChildPerception& seen) {
     partner_last_was_stroke_ = touch.item < 0;
   }
   if (partner.touch_count > 0) {
+    partner_last_touch_t_ = t;
     const SeenTouch& touch = partner.touches[0];
     partner_last_point_ = touch.point;
     partner_last_t_ = t;
@@ -163,12 +169,16 @@ void ChildAgent::observe(double t, double dt, const ChildPerception& seen) {
 
   const bool looking = partner.gaze.kind == GazeKind::PartnerFace;
   if (looking && !prev_partner_looking_) {
+    last_answered_t_ = t;
     on_contingent(r.look_weight);
+    on_partner_bid(t, /*joint=*/false, /*spoken=*/false);
     partner_attention_ = std::min(1.0, partner_attention_ + 0.25);
   }
   prev_partner_looking_ = looking;
   if (partner.speech && partner.speech->to == Addressee::Partner) {
+    last_answered_t_ = t;
     on_contingent(r.talk_weight);
+    on_partner_bid(t, /*joint=*/partner.speech->kind == Utterance::Proposal, /*spoken=*/true);
     partner_attention_ = std::min(1.0, partner_attention_ + 0.35);
   }
   if (partner.wants_to_stop) partner_quit_ = true;
@@ -177,11 +187,16 @@ void ChildAgent::observe(double t, double dt, const ChildPerception& seen) {
     bid_pending_ = false;
     ++counters_.unanswered_bids;
     motivation_ -= params_->drives.unanswered_bid_drop * motivation_;
+    expectation_ -= params_->partnership.expectation_rate * expectation_;
   }
 }
 
 void ChildAgent::on_contingent(double weight) {
   ++counters_.contingent_responses;
+  if (bid_pending_) {
+    ++counters_.bids_answered;
+    expectation_ += params_->partnership.expectation_rate * (1.0 - expectation_);
+  }
   bid_pending_ = false;
   motivation_ += params_->drives.contingency_gain * weight * (1.0 - motivation_);
 }
@@ -239,6 +254,7 @@ void ChildAgent::maybe_quit(double t, double dt) {
 
 void ChildAgent::advance_labels(double t) {
   if (quit_) return;
+  sustain_joint_play(t);
   for (const Axis axis : kAxes) {
     const auto a = static_cast<std::size_t>(axis);
     if (t >= next_switch_[a]) switch_label(axis, draw_next_label(axis), t);
@@ -268,6 +284,15 @@ std::size_t ChildAgent::draw_next_label(Axis axis) {
     double log_w = m.bias[j];
     for (std::size_t k = 0; k < kFeatureCount; ++k) log_w += m.coupling[j][k] * f[k];
     w[j] = m.transition[current][j] * std::exp(std::clamp(log_w, -30.0, 30.0));
+    if (axis == Axis::SocialEngagement) {
+      // Joint play is sought only from a partner expected to answer; onlooking needs play worth watching.
+      const auto label = static_cast<SocialEngagement>(j);
+      if (label == SocialEngagement::Associative || label == SocialEngagement::Cooperative) {
+        w[j] *= std::pow(expectation_, params_->partnership.expectation_exponent);
+      } else if (label == SocialEngagement::Onlooker) {
+        w[j] *= std::min(1.0, 2.0 * partner_active_);
+      }
+    }
     total += w[j];
   }
   if (!(total > 0.0)) return current;
@@ -566,6 +591,7 @@ void ChildAgent::update_gaze(double t, const ChildPerception& seen, ChildActions
   }
   double p_face = e.partner_face_share[static_cast<std::size_t>(labels_.social)];
   if (robot) p_face += 0.3 * std::exp(-t / (60.0 * params_->drives.novelty_tau_min));
+  p_face *= bid_scale();
   if (seen.partner.present && rng_.bernoulli(p_face)) {
     gaze_.kind = face;
     ++counters_.partner_glances;
@@ -573,6 +599,13 @@ void ChildAgent::update_gaze(double t, const ChildPerception& seen, ChildActions
     return;
   }
   const bool onlooker = labels_.social == SocialEngagement::Onlooker;
+  if (onlooker && seen.partner.touch_count == 0 && t - partner_last_t_ < params_->partnership.watch_window_s) {
+    // An onlooker keeps its eyes on where the partner plays between the partner's touches.
+    gaze_.point = partner_last_point_;
+    gaze_.item = partner_last_item_;
+    gaze_.kind = gaze_.item >= 0 ? GazeKind::Item : GazeKind::Tray;
+    return;
+  }
   if ((onlooker || rng_.bernoulli(0.3)) && seen.partner.touch_count > 0) {
     gaze_.kind = GazeKind::Tray;
     gaze_.point = seen.partner.touches[0].point;
@@ -580,9 +613,18 @@ void ChildAgent::update_gaze(double t, const ChildPerception& seen, ChildActions
     if (gaze_.item >= 0) gaze_.kind = GazeKind::Item;
     return;
   }
-  if (labels_.task == TaskEngagement::NoPlay && rng_.bernoulli(0.5)) {
-    gaze_.kind = GazeKind::Away;
-    return;
+  if (labels_.task == TaskEngagement::NoPlay) {
+    // A child out of the game often watches the partner play; otherwise it looks away half the time.
+    if (t - partner_last_t_ < params_->partnership.watch_window_s && rng_.bernoulli(0.5)) {
+      gaze_.point = partner_last_point_;
+      gaze_.item = partner_last_item_;
+      gaze_.kind = gaze_.item >= 0 ? GazeKind::Item : GazeKind::Tray;
+      return;
+    }
+    if (rng_.bernoulli(0.5)) {
+      gaze_.kind = GazeKind::Away;
+      return;
+    }
   }
   if (seen.item_count > 0) {
     const SeenItem& item = seen.items[static_cast<std::size_t>(rng_.uniform_int(0, seen.item_count - 1))];
@@ -633,10 +675,77 @@ void ChildAgent::update_speech(double t, double dt, ChildActions& out) {
   double rate = e.speech_per_min[static_cast<std::size_t>(labels_.social)] *
                 std::exp(0.5 * feature(Feature::Sociability));
   if (partner_robot_) rate += e.robot_curiosity_per_min * std::exp(-t / (60.0 * params_->drives.novelty_tau_min));
+  rate *= bid_scale();
   if (rng_.bernoulli(rate * dt / 60.0)) {
     const double u = rng_.uniform();
     say(u < 0.5 ? Utterance::Comment : (u < 0.8 ? Utterance::Proposal : Utterance::Question), Addressee::Partner,
         out, t);
+  }
+}
+
+double ChildAgent::bid_scale() const {
+  const double floor = params_->partnership.bid_floor;
+  return floor + (1.0 - floor) * expectation_;
+}
+
+double ChildAgent::answer_probability() const {
+  const PartnershipParams& pa = params_->partnership;
+  const double p = std::clamp(pa.answer_probability[static_cast<std::size_t>(labels_.social)], 1e-6, 1.0 - 1e-6);
+  const double logit = std::log(p / (1.0 - p)) + pa.answer_age_logit * feature(Feature::Age) +
+                       pa.answer_sociability_logit * feature(Feature::Sociability) + feature(Feature::Motivation);
+  return 1.0 / (1.0 + std::exp(-logit));
+}
+
+double ChildAgent::reciprocity_window() const {
+  const PartnershipParams& pa = params_->partnership;
+  return pa.reciprocity_window_s * std::max(0.3, 1.0 + pa.window_per_year * (profile_.age_years - 6.0));
+}
+
+void ChildAgent::on_partner_bid(double t, bool joint, bool spoken) {
+  if (answer_.active || quit_ || !rng_.bernoulli(answer_probability())) return;
+  const PartnershipParams& pa = params_->partnership;
+  answer_.active = true;
+  answer_.due = t + rng_.lognormal(std::log(pa.answer_delay_median_s), 0.5);
+  answer_.spoken = spoken;
+  // A glance is answered with a glance; only a spoken or joint bid can draw the child into joint play.
+  answer_.join = (joint || spoken) && rng_.bernoulli(pa.join_probability);
+  answer_.mode = joint ? SocialEngagement::Cooperative : SocialEngagement::Associative;
+}
+
+void ChildAgent::answer_partner(double t, ChildActions& out) {
+  if (!answer_.active || t < answer_.due) return;
+  answer_.active = false;
+  if (quit_) return;
+  ++counters_.answers;
+  // Answering is visible: the child looks back at the partner, and replies when it was spoken to.
+  gaze_ = GazeTarget{};
+  gaze_.kind = partner_robot_ ? GazeKind::Robot : GazeKind::PartnerFace;
+  next_glance_t_ = t + rng_.lognormal(std::log(params_->expression.glance_median_s), params_->expression.glance_sigma);
+  if (answer_.spoken && t >= speaking_until_) say(Utterance::Comment, Addressee::Partner, out, t);
+  // Taking up a joint bid joins the partner's joint play (a proposal or a joint act: cooperation).
+  const bool together = labels_.social == SocialEngagement::Associative ||
+                        labels_.social == SocialEngagement::Cooperative;
+  const bool upgrade = answer_.mode == SocialEngagement::Cooperative && labels_.social != SocialEngagement::Cooperative;
+  if (answer_.join && (!together || upgrade)) {
+    ++counters_.joins;
+    last_answered_t_ = t;
+    switch_label(Axis::SocialEngagement, static_cast<std::size_t>(answer_.mode), t);
+  }
+}
+
+void ChildAgent::sustain_joint_play(double t) {
+  const auto s = static_cast<std::size_t>(Axis::SocialEngagement);
+  const bool partner_playing = t - partner_last_touch_t_ < params_->coder.active_window_s;
+  if (labels_.social == SocialEngagement::Associative || labels_.social == SocialEngagement::Cooperative) {
+    if (t - std::max(last_answered_t_, bout_start_[s]) <= reciprocity_window()) return;
+    ++counters_.joint_play_lapses;
+    const auto next = partner_playing ? SocialEngagement::Parallel : SocialEngagement::Solitary;
+    switch_label(Axis::SocialEngagement, static_cast<std::size_t>(next), t);
+  } else if (labels_.social == SocialEngagement::Onlooker) {
+    const double watch = params_->partnership.watch_window_s;
+    if (t - bout_start_[s] > watch && t - partner_last_touch_t_ > watch) {
+      switch_label(Axis::SocialEngagement, static_cast<std::size_t>(SocialEngagement::Solitary), t);
+    }
   }
 }
 

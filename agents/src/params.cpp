@@ -146,7 +146,8 @@ void read_axis(const Reader& r, const YAML::Node& node, const std::string& path,
 
 ChildModelParams parse_document(const YAML::Node& root, const Reader& r) {
   ChildModelParams p;
-  r.check_keys(root, "", {"version", "session_cap_s", "axes", "drives", "reactions", "motor", "expression", "traits"});
+  r.check_keys(root, "", {"version", "session_cap_s", "axes", "drives", "reactions", "motor", "expression", "traits",
+                          "partnership", "coder"});
   const double version = r.number(r.child(root, "", "version"), "version", 1, 1);
   (void)version;
   p.session_cap_s = r.number(r.child(root, "", "session_cap_s"), "session_cap_s", 1.0, 86400.0);
@@ -239,8 +240,38 @@ ChildModelParams parse_document(const YAML::Node& root, const Reader& r) {
                {"attention_mean", &t.attention_mean, 0, 1},
                {"attention_sd", &t.attention_sd, 0, 1},
                {"attention_per_year", &t.attention_per_year, -0.5, 0.5}});
+
+  PartnershipParams& pa = p.partnership;
+  const YAML::Node partnership = r.child(root, "", "partnership");
+  read_fields(r, partnership, "partnership",
+              {{"answer_age_logit", &pa.answer_age_logit, -20, 20},
+               {"answer_sociability_logit", &pa.answer_sociability_logit, -20, 20},
+               {"answer_delay_median_s", &pa.answer_delay_median_s, 0.05, 60},
+               {"join_probability", &pa.join_probability, 0, 1},
+               {"reciprocity_window_s", &pa.reciprocity_window_s, 0.5, 600},
+               {"window_per_year", &pa.window_per_year, -0.5, 0.5},
+               {"expectation_prior", &pa.expectation_prior, 0, 1},
+               {"expectation_rate", &pa.expectation_rate, 0, 1},
+               {"expectation_exponent", &pa.expectation_exponent, 0, 20},
+               {"bid_floor", &pa.bid_floor, 0, 1},
+               {"watch_window_s", &pa.watch_window_s, 0.5, 600}},
+              {"answer_probability"});
+  read_label_map(r, r.child(partnership, "partnership", "answer_probability"), "partnership.answer_probability",
+                 Axis::SocialEngagement, pa.answer_probability, 0.0, 1.0, true);
+
+  CoderParams& co = p.coder;
+  read_fields(r, r.child(root, "", "coder"), "coder",
+              {{"answer_window_s", &co.answer_window_s, 0.1, 600},
+               {"exchange_hold_s", &co.exchange_hold_s, 0.1, 600},
+               {"joint_act_hold_s", &co.joint_act_hold_s, 0.1, 600},
+               {"active_window_s", &co.active_window_s, 0.1, 600},
+               {"watch_share", &co.watch_share, 0, 1},
+               {"watch_window_s", &co.watch_window_s, 0.1, 600},
+               {"min_bout_s", &co.min_bout_s, 0, 600},
+               {"joint_distance_m", &co.joint_distance_m, 0, 1}});
   return p;
 }
+
 
 std::string num(double v) { return fmt::format("{}", v); }
 
@@ -387,6 +418,31 @@ std::string child_model_params_to_yaml(const ChildModelParams& p, std::string_vi
                      {"attention_mean", t.attention_mean},
                      {"attention_sd", t.attention_sd},
                      {"attention_per_year", t.attention_per_year}});
+  out << YAML::EndMap;
+  const PartnershipParams& pa = p.partnership;
+  section("partnership", {{"answer_age_logit", pa.answer_age_logit},
+                          {"answer_sociability_logit", pa.answer_sociability_logit},
+                          {"answer_delay_median_s", pa.answer_delay_median_s},
+                          {"join_probability", pa.join_probability},
+                          {"reciprocity_window_s", pa.reciprocity_window_s},
+                          {"window_per_year", pa.window_per_year},
+                          {"expectation_prior", pa.expectation_prior},
+                          {"expectation_rate", pa.expectation_rate},
+                          {"expectation_exponent", pa.expectation_exponent},
+                          {"bid_floor", pa.bid_floor},
+                          {"watch_window_s", pa.watch_window_s}});
+  out << YAML::Key << "answer_probability" << YAML::Value;
+  emit_label_map(out, Axis::SocialEngagement, pa.answer_probability);
+  out << YAML::EndMap;
+  const CoderParams& co = p.coder;
+  section("coder", {{"answer_window_s", co.answer_window_s},
+                    {"exchange_hold_s", co.exchange_hold_s},
+                    {"joint_act_hold_s", co.joint_act_hold_s},
+                    {"active_window_s", co.active_window_s},
+                    {"watch_share", co.watch_share},
+                    {"watch_window_s", co.watch_window_s},
+                    {"min_bout_s", co.min_bout_s},
+                    {"joint_distance_m", co.joint_distance_m}});
   out << YAML::EndMap;
   out << YAML::EndMap;
   std::string text;

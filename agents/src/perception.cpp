@@ -23,6 +23,28 @@ void ChildActions::push_touch(const TouchCommand& command) {
   touches[static_cast<std::size_t>(touch_count++)] = command;
 }
 
+namespace {
+constexpr std::array<std::string_view, 6> kGazeNames = {"away", "partner", "item", "tray", "robot", "experimenter"};
+constexpr std::array<std::string_view, 6> kUtteranceNames = {"comment", "proposal", "question",
+                                                             "protest", "request",  "announce_stop"};
+constexpr std::array<std::string_view, 3> kAddresseeNames = {"nobody", "partner", "experimenter"};
+
+template <typename Enum, std::size_t N>
+std::optional<Enum> parse_name(const std::array<std::string_view, N>& names, std::string_view name) {
+  for (std::size_t i = 0; i < N; ++i) {
+    if (names[i] == name) return static_cast<Enum>(i);
+  }
+  return std::nullopt;
+}
+}  // namespace
+
+std::string_view gaze_kind_name(GazeKind kind) { return kGazeNames.at(static_cast<std::size_t>(kind)); }
+std::string_view utterance_name(Utterance kind) { return kUtteranceNames.at(static_cast<std::size_t>(kind)); }
+std::string_view addressee_name(Addressee to) { return kAddresseeNames.at(static_cast<std::size_t>(to)); }
+std::optional<GazeKind> parse_gaze_kind(std::string_view name) { return parse_name<GazeKind>(kGazeNames, name); }
+std::optional<Utterance> parse_utterance(std::string_view name) { return parse_name<Utterance>(kUtteranceNames, name); }
+std::optional<Addressee> parse_addressee(std::string_view name) { return parse_name<Addressee>(kAddresseeNames, name); }
+
 double seat_edge_y(Seat seat) { return seat == Seat::Bottom ? -sim::kScreenHeightM : 0.0; }
 
 double depth_from_seat(Seat seat, const Vec2& p) {

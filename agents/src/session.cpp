@@ -307,8 +307,9 @@ void fill_partner_from_child(const ChildActions& last, const StandInTray& tray, 
   view.wants_to_stop = last.quit;
 }
 
-ChildOutcome outcome_of(const ChildAgent& child) {
-  return {child.profile(), child.timeline(), child.quit_time(), child.counters()};
+ChildOutcome outcome_of(const ChildAgent& child, const ChildTimeline& coded_social) {
+  return {child.profile(), with_coded_social(child.timeline(), coded_social), child.timeline(), child.quit_time(),
+          child.counters()};
 }
 
 }  // namespace
@@ -340,6 +341,9 @@ SessionResult simulate_session(const ChildModelParams& params, const SessionConf
   ChildPerception seen_yellow;
   ChildActions last_purple;
   ChildActions last_yellow;
+  PairCoder coder(params.coder, !cc);
+  std::array<SeenTouch, 6> touches{};
+  int last_robot_item = -1;
   const double dt = config.tick_s;
   const double cap = params.session_cap_s;
   double t = 0.0;
@@ -378,15 +382,34 @@ SessionResult simulate_session(const ChildModelParams& params, const SessionConf
       robot->step(t, tray);
     }
 
+    const ObservedPlayer seen_a = observed_child(last_purple, touches, tray.touches_of(0, touches));
+    ObservedPlayer seen_b;
+    if (cc) {
+      seen_b = observed_child(last_yellow, touches, tray.touches_of(1, touches));
+    } else {
+      const int n = robot->touches(touches, tray);
+      seen_b.touching = n > 0;
+      if (n > 0) {
+        seen_b.touch_point = touches[0].point;
+        seen_b.touch_item = touches[0].item;
+      }
+      seen_b.touch_started = robot->moving_item() >= 0 && robot->moving_item() != last_robot_item;
+      last_robot_item = robot->moving_item();
+      seen_b.gaze.kind = robot->moving_item() >= 0 ? GazeKind::Item : GazeKind::Tray;
+      seen_b.gaze.item = robot->moving_item();
+    }
+    coder.observe(t, seen_a, seen_b);
+
     const bool ended = cc ? (purple.wants_to_stop() && yellow->wants_to_stop()) : purple.wants_to_stop();
     if (ended) break;
   }
   result.duration_s = t;
   purple.finish(t);
-  result.purple = outcome_of(purple);
+  coder.finish(t);
+  result.purple = outcome_of(purple, coder.timeline(0));
   if (cc) {
     yellow->finish(t);
-    result.yellow = outcome_of(*yellow);
+    result.yellow = outcome_of(*yellow, coder.timeline(1));
   } else {
     result.robot_moves = robot->moves();
   }

@@ -12,6 +12,7 @@
 #include <span>
 
 #include "freeplay/agents/child_agent.hpp"
+#include "freeplay/agents/coder.hpp"
 #include "freeplay/agents/labels.hpp"
 #include "freeplay/agents/perception.hpp"
 #include "freeplay/agents/profile.hpp"
@@ -80,39 +81,6 @@ nlohmann::json profile_json(const agents::ChildProfile& p) {
           {"assertiveness", p.assertiveness},
           {"attention_span", p.attention_span},
           {"tablet_familiarity", tablet[static_cast<int>(p.tablet)]}};
-}
-
-std::string_view gaze_name(agents::GazeKind kind) {
-  switch (kind) {
-    case agents::GazeKind::Away: return "away";
-    case agents::GazeKind::PartnerFace: return "partner";
-    case agents::GazeKind::Item: return "item";
-    case agents::GazeKind::Tray: return "tray";
-    case agents::GazeKind::Robot: return "robot";
-    case agents::GazeKind::Experimenter: return "experimenter";
-  }
-  return "?";
-}
-
-std::string_view utterance_name(agents::Utterance kind) {
-  switch (kind) {
-    case agents::Utterance::Comment: return "comment";
-    case agents::Utterance::Proposal: return "proposal";
-    case agents::Utterance::Question: return "question";
-    case agents::Utterance::Protest: return "protest";
-    case agents::Utterance::Request: return "request";
-    case agents::Utterance::AnnounceStop: return "announce_stop";
-  }
-  return "?";
-}
-
-std::string_view addressee_name(agents::Addressee to) {
-  switch (to) {
-    case agents::Addressee::Nobody: return "nobody";
-    case agents::Addressee::Partner: return "partner";
-    case agents::Addressee::Experimenter: return "experimenter";
-  }
-  return "?";
 }
 
 /// One seated child: its agent, finger bookkeeping and per-episode counters.
@@ -214,6 +182,7 @@ class Episode {
     freeplay_map_ = tray_.background().clone();
     stage_ = "freeplay";
     stage_event("freeplay");
+    coder_.emplace(models_.child_params->coder, child_robot_);
     drain_tray_events();
     const double cap = scenario_.protocol.freeplay_cap_s;
     std::string ended_by = "cap";
@@ -224,6 +193,7 @@ class Episode {
       if (((tick & 63) == 0 || observers_ != nullptr) && stop.load(std::memory_order_relaxed)) return aborted(result);
       step_children(t);
       if (child_robot_) step_robot(t);
+      code_players(t);
       tray_.step(kTickS);
       drain_tray_events();
       update_gaze_metrics(t);
@@ -238,6 +208,7 @@ class Episode {
     drawing_coverage_ = sim::differing_pixel_share(tray_.background(), freeplay_map_);
     log_.emit({freeplay_start_ + duration, "protocol", "freeplay_ended", {{"ended_by", ended_by}, {"duration_s", duration}}});
     for (auto& c : children_) c.agent->finish(duration);
+    coder_->finish(duration);
     // Debriefing.
     tray_.signal(sim::Signal::BlankInterface);
     stage_event("debriefing");
@@ -246,8 +217,17 @@ class Episode {
 
     result.duration_s = duration;
     result.simulated_s = tray_.time();
-    result.annotations.purple = children_[0].agent->timeline();
-    if (!child_robot_) result.annotations.yellow = children_[1].agent->timeline();
+    // The ground truth is what the coder saw; the children's own states stay for the agreement metric.
+    result.annotations.purple = agents::with_coded_social(children_[0].agent->timeline(), coder_->timeline(0));
+    if (!child_robot_) {
+      result.annotations.yellow = agents::with_coded_social(children_[1].agent->timeline(), coder_->timeline(1));
+    }
+    result.hit_cap = ended_by == "cap";
+    for (const auto& c : children_) {
+      const auto& coded = c.seat_name == "purple" ? result.annotations.purple : result.annotations.yellow;
+      result.children.push_back({c.agent->profile(), coded.value_or(agents::ChildTimeline{}), c.agent->timeline(),
+                                 c.agent->quit_time(), c.agent->counters()});
+    }
     result.record = record(duration, ended_by, result.annotations);
     result.record["simulated_s"] = result.simulated_s;
     result.record["wall_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
@@ -351,7 +331,7 @@ class Episode {
       s.seat = c.seat_name;
       s.age_years = c.agent->profile().age_years;
       s.gender = std::string(agents::gender_name(c.agent->profile().gender));
-      s.gaze = std::string(gaze_name(c.last.gaze.kind));
+      s.gaze = std::string(agents::gaze_kind_name(c.last.gaze.kind));
       s.gaze_point = gaze_point_of(c);
       s.head = face_of(c.seat_name);
       s.touches.clear();
@@ -471,7 +451,8 @@ class Episode {
         break;
       case RobotGaze::Kind::Tray: view.gaze.kind = agents::GazeKind::Tray; break;
     }
-    if (robot_speech_started_ >= 0 && std::abs(robot_speech_started_ - t) < 1e-9) {
+    // The robot speaks during its step, after the children perceived: its utterance reaches them at the next tick.
+    if (robot_speech_started_ >= 0 && robot_speech_started_ > t - kTickS - 1e-9 && robot_speech_started_ < t - 1e-9) {
       agents::SpeechEvent speech;
       speech.kind = agents::Utterance::Comment;
       speech.to = agents::Addressee::Partner;
@@ -491,6 +472,36 @@ class Episode {
                                                    : children_[i].agent->step(t, kTickS, perceptions_[i]);
     }
     for (auto& c : children_) apply(c, t);
+  }
+
+  /// What the coder sees of both players this tick (children through their actions, the robot as a child sees it).
+  void code_players(double t) {
+    const auto observed = [this](const ChildSlot& c) {
+      std::array<agents::SeenTouch, 6> touches{};
+      int n = 0;
+      for (const auto& touch : tray_.touches()) {
+        if (c.owns_finger(touch.finger) && n < 6) touches[static_cast<std::size_t>(n++)] = {touch.position, agents::item_index(touch.item)};
+      }
+      return agents::observed_child(c.last, touches, n);
+    };
+    const agents::ObservedPlayer first = observed(children_[0]);
+    agents::ObservedPlayer second;
+    if (!child_robot_) {
+      second = observed(children_[1]);
+    } else {
+      const auto& robot = perceptions_[0].partner;
+      second.touching = robot.touch_count > 0;
+      if (second.touching) {
+        second.touch_point = robot.touches[0].point;
+        second.touch_item = robot.touches[0].item;
+      }
+      second.touch_started = second.touching && (!coded_robot_touching_ || second.touch_item != coded_robot_item_);
+      coded_robot_touching_ = second.touching;
+      coded_robot_item_ = second.touch_item;
+      second.gaze = robot.gaze;
+      second.speech = robot.speech;
+    }
+    coder_->observe(t, first, second);
   }
 
   void apply(ChildSlot& c, double t) {
@@ -544,15 +555,15 @@ class Episode {
     if (a.speech) {
       c.speaking_until = t + a.speech->duration_s;
       log_.emit({at, "child." + c.seat_name, "speech",
-                 {{"kind", std::string(utterance_name(a.speech->kind))},
-                  {"to", std::string(addressee_name(a.speech->to))},
+                 {{"kind", std::string(agents::utterance_name(a.speech->kind))},
+                  {"to", std::string(agents::addressee_name(a.speech->to))},
                   {"duration_s", a.speech->duration_s},
                   {"syllables", a.speech->syllables}}});
     }
     if (a.gaze.kind != c.last_gaze_kind || a.gaze.item != c.last_gaze_item) {
       c.last_gaze_kind = a.gaze.kind;
       c.last_gaze_item = a.gaze.item;
-      nlohmann::json data{{"target", std::string(gaze_name(a.gaze.kind))}};
+      nlohmann::json data{{"target", std::string(agents::gaze_kind_name(a.gaze.kind))}};
       if (a.gaze.kind == agents::GazeKind::Item && a.gaze.item >= 0) {
         data["item"] = std::string(agents::kItemNames[static_cast<std::size_t>(a.gaze.item)]);
       }
@@ -868,6 +879,13 @@ class Episode {
     };
     shares("purple", *annotations.purple);
     if (annotations.yellow) shares("yellow", *annotations.yellow);
+    for (const auto& c : children_) {
+      const auto& coded = c.seat_name == "purple" ? annotations.purple : annotations.yellow;
+      if (coded) {
+        metrics["coder_agreement"][c.seat_name] =
+            agents::timeline_agreement(*coded, c.agent->timeline(), agents::Axis::SocialEngagement, duration);
+      }
+    }
     int child_touches = 0;
     int child_moves = 0;
     for (const auto& c : children_) {
@@ -930,6 +948,9 @@ class Episode {
   EventLog log_;
   double freeplay_start_ = 0.0;
   std::vector<ChildSlot> children_;
+  std::optional<agents::PairCoder> coder_;
+  bool coded_robot_touching_ = false;
+  int coded_robot_item_ = -1;
   std::array<agents::ChildPerception, 2> perceptions_{};
   std::array<agents::SeenZone, agents::kMaxSeenZones> seen_zones_{};
   int seen_zone_count_ = 0;

@@ -30,15 +30,19 @@ TEST(ShippedScenarios, EveryFileValidates) {
   EXPECT_GE(files, 4);
 }
 
-TEST(ShippedScenarios, BaselinesHavePInSoRoSessionCounts) {
-  const auto suite = load_suite(scenarios_dir() / "baselines.yaml");
-  ASSERT_EQ(suite.variants.size(), 3u);
-  EXPECT_EQ(suite.variants[0].scenario.condition, "child-child");
-  EXPECT_EQ(suite.variants[0].scenario.episodes, 45);
-  EXPECT_EQ(suite.variants[1].scenario.policy, "asocial");
-  EXPECT_EQ(suite.variants[1].scenario.episodes, 30);
-  EXPECT_EQ(suite.variants[2].scenario.policy, "social");
-  EXPECT_EQ(suite.variants[2].scenario.episodes, 30);
-  // Common random numbers: both robot conditions share the seed, hence the same synthetic children.
-  EXPECT_EQ(suite.variants[1].scenario.seed, suite.variants[2].scenario.seed);
+TEST(ShippedScenarios, BaselinesAreLargeAndThePInSoRoVariantHasItsSessionCounts) {
+  const auto check = [](const char* file, int cc, int cr) {
+    const auto suite = load_suite(scenarios_dir() / file);
+    ASSERT_EQ(suite.variants.size(), 3u) << file;
+    EXPECT_EQ(suite.variants[0].scenario.condition, "child-child");
+    EXPECT_EQ(suite.variants[0].scenario.episodes, cc);
+    EXPECT_EQ(suite.variants[1].scenario.policy, "asocial");
+    EXPECT_EQ(suite.variants[1].scenario.episodes, cr);
+    EXPECT_EQ(suite.variants[2].scenario.policy, "social");
+    EXPECT_EQ(suite.variants[2].scenario.episodes, cr);
+    // Common random numbers: both robot conditions share the seed, hence the same synthetic children.
+    EXPECT_EQ(suite.variants[1].scenario.seed, suite.variants[2].scenario.seed);
+  };
+  check("baselines.yaml", 200, 200);
+  check("baselines-pinsoro.yaml", 45, 30);
 }

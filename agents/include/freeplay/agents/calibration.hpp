@@ -35,6 +35,13 @@ struct LabelStats {
   std::array<std::array<int, kMaxLabels>, kAxisCount> bouts{};           ///< pooled bout counts per label
   std::array<std::array<double, 5>, 5> social_transitions{};            ///< row → next-label probability
   std::array<double, kAxisCount> changes_per_min{};                     ///< label changes per minute of session
+  double dyad_same_social = 0.0;   ///< P(both children carry the same social label), 1-s sampling (child-child)
+  double dyad_cooperative = 0.0;   ///< share of sampled seconds with both children cooperative (child-child)
+  double coder_agreement = 0.0;    ///< share of sampled seconds where the coded social label equals the child's state
+  std::array<double, kMaxLabels> dyad_pair_share{};  ///< share of sampled seconds with both children in label j
+  double items_taken_per_min = 0.0;      ///< items the partner took from a child, per child-minute
+  double contingent_per_min = 0.0;       ///< partner responses a child perceived as contingent, per child-minute
+  double unanswered_bids_per_min = 0.0;  ///< bids that went unanswered, per child-minute
 };
 
 /// Everything measured on one simulated population.
@@ -63,6 +70,9 @@ struct ComparisonRow {
   /// True when the row is unchecked or the simulated value lies in [lo, hi].
   bool within() const { return !checked || (simulated >= lo && simulated <= hi); }
 };
+
+/// Half-width of the acceptance band of a social-transition probability (PInSoRo rows hold 174–300 transitions).
+inline constexpr double kTransitionTolerance = 0.15;
 
 /// Side-by-side rows for child-child (`cc`, may be null) and child-robot (`cr`, may be null) statistics.
 std::vector<ComparisonRow> compare_with_targets(const PopulationStats* cc, const PopulationStats* cr);

@@ -25,6 +25,10 @@ struct ChildCounters {
   int unanswered_bids = 0;       ///< my bids the partner did not answer
   int items_taken = 0;           ///< items the partner took from me
   int reactions_to_taking = 0;   ///< immediate attitude switches after an item was taken
+  int bids_answered = 0;         ///< my bids the partner answered in time
+  int answers = 0;               ///< the partner's bids I answered
+  int joins = 0;                 ///< times I joined the partner's joint play when answering
+  int joint_play_lapses = 0;     ///< joint play I left because the partner stopped answering
 };
 
 /// One synthetic child. Mutable per-episode state; the parameters must outlive it.
@@ -42,6 +46,8 @@ class ChildAgent {
   const LabelState& labels() const { return labels_; }
   /// The ground-truth bouts so far (open bouts are added by finish()).
   const ChildTimeline& timeline() const { return timeline_; }
+  /// How much the child expects its partner to answer a bid, in [0, 1] (learned from the partner's answers).
+  double answer_expectation() const { return expectation_; }
   /// Motivation drive in [0, 1].
   double motivation() const { return motivation_; }
   /// Boredom drive (≥ 0).
@@ -86,6 +92,12 @@ class ChildAgent {
   void update_gaze(double t, const ChildPerception& seen, ChildActions& out);
   void update_speech(double t, double dt, ChildActions& out);
   void make_bid(double t);
+  void on_partner_bid(double t, bool joint, bool spoken);
+  void answer_partner(double t, ChildActions& out);
+  double answer_probability() const;
+  double bid_scale() const;
+  double reciprocity_window() const;
+  void sustain_joint_play(double t);
   double reach_depth() const;
   bool reachable(const Vec2& p) const;
   Vec2 clamp_reachable(const Vec2& p) const;
@@ -135,6 +147,16 @@ class ChildAgent {
   double partner_last_t_ = -1e9;
   bool partner_last_was_stroke_ = false;
   bool bid_pending_ = false;
+  double expectation_ = 0.7;
+  double last_answered_t_ = -1e9;
+  double partner_last_touch_t_ = -1e9;
+  struct PendingAnswer {
+    bool active = false;
+    double due = 0.0;
+    bool spoken = false;
+    bool join = false;
+    SocialEngagement mode = SocialEngagement::Associative;
+  } answer_;
   double bid_deadline_ = 0.0;
   bool retaliation_pending_ = false;
   bool protest_pending_ = false;

@@ -119,6 +119,34 @@ struct TraitParams {
   double attention_per_year = 0.06;     ///< attention span gained per year of age
 };
 
+/// Reciprocity: how a child answers its partner's bids and how joint play depends on being answered.
+struct PartnershipParams {
+  std::array<double, 5> answer_probability{0.25, 0.45, 0.45, 0.85, 0.9};  ///< P(answer a bid) per own social label
+  double answer_age_logit = 0.4;        ///< logit shift of answering per (age − 6)/2
+  double answer_sociability_logit = 0.8;///< logit shift of answering per (2·sociability − 1)
+  double answer_delay_median_s = 1.0;   ///< median delay of an answer (children answer slower than adults' 200 ms)
+  double join_probability = 0.8;        ///< chance that answering a joint bid also joins the bidder's joint play
+  double reciprocity_window_s = 10.0;   ///< joint play ends when the partner has not answered for this long (s, 6 y)
+  double window_per_year = 0.15;        ///< relative change of that window per year of age (older sustain longer)
+  double expectation_prior = 0.7;       ///< initial expectation that the partner answers a bid
+  double expectation_rate = 0.15;       ///< update rate of that expectation per answered / unanswered bid
+  double expectation_exponent = 2.0;    ///< joint-play transition weights × expectation^exponent
+  double bid_floor = 0.2;               ///< bid rates × (floor + (1 − floor) × expectation)
+  double watch_window_s = 4.0;          ///< onlooking ends when the partner has not acted for this long (s)
+};
+
+/// The coder (annotator): how observable behaviour becomes social-engagement labels (docs/agents.md).
+struct CoderParams {
+  double answer_window_s = 5.0;   ///< an act of attention answers the partner's within this time (s)
+  double exchange_hold_s = 10.0;  ///< an exchange keeps both children associative/cooperative this long (s)
+  double joint_act_hold_s = 12.0; ///< a joint act (on the partner's item or area) marks cooperation this long (s)
+  double active_window_s = 6.0;   ///< a child touched the screen within this time counts as playing (s)
+  double watch_share = 0.5;       ///< share of the last `watch_window_s` spent watching the partner's play
+  double watch_window_s = 4.0;    ///< window of that share (s)
+  double min_bout_s = 3.0;        ///< a new label must hold this long before the coder switches to it (s)
+  double joint_distance_m = 0.12; ///< a touch this close to the partner's recent touch is on the partner's area
+};
+
 /// Every parameter of the child model (immutable once loaded).
 struct ChildModelParams {
   std::array<AxisModel, kAxisCount> axes{};  ///< indexed by Axis
@@ -127,6 +155,8 @@ struct ChildModelParams {
   MotorParams motor;                         ///< touches
   ExpressionParams expression;               ///< gaze and speech
   TraitParams traits;                        ///< personality traits of sampled children
+  PartnershipParams partnership;             ///< reciprocity and answering
+  CoderParams coder;                         ///< the annotator's rules
   double session_cap_s = 2400.0;             ///< the protocol's 40-minute cap (s)
 
   /// The axis model of `axis`.

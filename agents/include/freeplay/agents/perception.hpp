@@ -57,6 +57,19 @@ enum class Addressee : std::uint8_t { Nobody, Partner, Experimenter };
 /// What kind of utterance it is (the content is not modelled).
 enum class Utterance : std::uint8_t { Comment, Proposal, Question, Protest, Request, AnnounceStop };
 
+/// The event-log name of a gaze kind ("away", "partner", "item", "tray", "robot", "experimenter").
+std::string_view gaze_kind_name(GazeKind kind);
+/// The event-log name of an utterance kind ("comment", "proposal", "question", "protest", "request", "announce_stop").
+std::string_view utterance_name(Utterance kind);
+/// The event-log name of an addressee ("nobody", "partner", "experimenter").
+std::string_view addressee_name(Addressee to);
+/// The gaze kind named `name` in an event log; nullopt when unknown.
+std::optional<GazeKind> parse_gaze_kind(std::string_view name);
+/// The utterance kind named `name` in an event log; nullopt when unknown.
+std::optional<Utterance> parse_utterance(std::string_view name);
+/// The addressee named `name` in an event log; nullopt when unknown.
+std::optional<Addressee> parse_addressee(std::string_view name);
+
 /// A gaze target: kind plus the item or point looked at when relevant.
 struct GazeTarget {
   GazeKind kind = GazeKind::Away;  ///< what is looked at

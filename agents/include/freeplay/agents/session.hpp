@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "freeplay/agents/child_agent.hpp"
+#include "freeplay/agents/coder.hpp"
 #include "freeplay/agents/params.hpp"
 #include "freeplay/agents/profile.hpp"
 
@@ -34,7 +35,8 @@ struct SessionConfig {
 /// What one child did in a session.
 struct ChildOutcome {
   ChildProfile profile;          ///< who it was
-  ChildTimeline timeline;        ///< ground-truth bouts over the whole session
+  ChildTimeline timeline;        ///< ground truth as the coder labels it: social engagement coded from behaviour
+  ChildTimeline internal;        ///< the child's own state (intentions) over the whole session
   double quit_time_s = -1.0;     ///< when it decided to stop (negative: never)
   ChildCounters counters;        ///< behaviour counts
 };

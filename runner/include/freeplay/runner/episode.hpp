@@ -12,6 +12,7 @@
 
 #include "freeplay/agents/annotations.hpp"
 #include "freeplay/agents/params.hpp"
+#include "freeplay/agents/session.hpp"
 #include "freeplay/core/event_log.hpp"
 #include "freeplay/runner/child_action_source.hpp"
 #include "freeplay/runner/episode_observer.hpp"
@@ -38,7 +39,9 @@ struct SharedModels {
 struct EpisodeResult {
   nlohmann::json record;                   ///< its line of episodes.jsonl (without run identity fields)
   EventLog events;                         ///< the full event log
-  agents::SessionAnnotations annotations;  ///< ground-truth state timelines (PInSoRo format)
+  agents::SessionAnnotations annotations;  ///< ground truth as the coder labels it (PInSoRo format)
+  std::vector<agents::ChildOutcome> children;  ///< each synthetic child: profile, coded and internal timelines
+  bool hit_cap = false;                    ///< free play stopped at the 40-minute cap
   double simulated_s = 0.0;                ///< whole protocol, simulated seconds
   double duration_s = 0.0;                 ///< free-play duration
   bool aborted = false;                    ///< stopped early by the stop flag: discard

@@ -1,0 +1,175 @@
+// The coder's rules on hand-made behaviour (docs/agents.md, "The coder"), and the partnership mechanism of the
+// synthetic children on the logic-only simulator: reciprocity, pair coding, age.
+
+#include <gtest/gtest.h>
+
+#include <functional>
+
+#include "freeplay/agents/calibration.hpp"
+#include "freeplay/agents/coder.hpp"
+#include "freeplay/agents/session.hpp"
+
+using namespace freeplay;
+using namespace freeplay::agents;
+
+namespace {
+
+const ChildModelParams& params() {
+  static const ChildModelParams p = default_child_model_params();
+  return p;
+}
+
+/// Behaviour of one player at time t (s), written by a test.
+using Script = std::function<ObservedPlayer(double t)>;
+
+/// Runs the coder over `seconds` at 10 Hz and returns the social share of each coded player.
+std::array<std::array<double, kMaxLabels>, 2> code(const Script& first, const Script& second, double seconds,
+                                                   bool second_is_robot = false) {
+  PairCoder coder(params().coder, second_is_robot);
+  for (long tick = 0; tick * 0.1 < seconds; ++tick) {
+    const double t = static_cast<double>(tick) * 0.1;
+    coder.observe(t, first(t), second(t));
+  }
+  coder.finish(seconds);
+  return {label_shares(coder.timeline(0), Axis::SocialEngagement),
+          second_is_robot ? std::array<double, kMaxLabels>{} : label_shares(coder.timeline(1), Axis::SocialEngagement)};
+}
+
+/// A player that drags an item at `x` for 1 s of every `period` s (starting at `phase`).
+ObservedPlayer plays(double t, double x, int item, double period = 4.0, double phase = 0.0) {
+  ObservedPlayer o;
+  const double u = std::fmod(t + 1000.0 * period - phase, period);
+  if (u < 1.0) {
+    o.touching = true;
+    o.touch_point = {x, -0.15};
+    o.touch_item = item;
+    o.touch_started = u < 0.1;
+  }
+  o.gaze.kind = GazeKind::Tray;
+  o.gaze.point = {x, -0.15};
+  return o;
+}
+
+/// Adds an utterance of `kind` to the partner starting at times k·period + phase.
+ObservedPlayer speaks(ObservedPlayer o, double t, Utterance kind, double period, double phase) {
+  const double u = std::fmod(t + 1000.0 * period - phase, period);
+  if (u < 0.1) o.speech = SpeechEvent{kind, Addressee::Partner, 1.0, 3};
+  if (u < 1.0) o.gaze.kind = GazeKind::PartnerFace;
+  return o;
+}
+
+constexpr std::size_t kSolitary = 0, kOnlooker = 1, kParallel = 2, kAssociative = 3, kCooperative = 4;
+
+}  // namespace
+
+TEST(Coder, PlayingSideBySideWithoutAttentionIsParallelForBoth) {
+  const auto shares = code([](double t) { return plays(t, 0.10, 0); }, [](double t) { return plays(t, 0.45, 5, 3.0); }, 120);
+  EXPECT_GT(shares[0][kParallel], 0.9);
+  EXPECT_GT(shares[1][kParallel], 0.9);
+}
+
+TEST(Coder, TalkingBackAndForthIsAssociativeForBoth) {
+  const auto shares = code([](double t) { return speaks(plays(t, 0.10, 0), t, Utterance::Comment, 6.0, 0.0); },
+                           [](double t) { return speaks(plays(t, 0.45, 5), t, Utterance::Comment, 6.0, 1.5); }, 120);
+  EXPECT_GT(shares[0][kAssociative], 0.85);
+  EXPECT_GT(shares[1][kAssociative], 0.85);
+}
+
+TEST(Coder, AProposalTakenUpOrJointWorkIsCooperativeForBoth) {
+  // Purple proposes, yellow answers and then works on purple's item.
+  const auto shares = code([](double t) { return speaks(plays(t, 0.10, 0), t, Utterance::Proposal, 6.0, 0.0); },
+                           [](double t) { return speaks(plays(t, 0.11, 0, 4.0, 2.0), t, Utterance::Comment, 6.0, 1.5); },
+                           120);
+  EXPECT_GT(shares[0][kCooperative], 0.85);
+  EXPECT_GT(shares[1][kCooperative], 0.85);
+}
+
+TEST(Coder, ChildWatchingTheOtherPlayIsOnlookerAndThePlayerSolitary) {
+  const auto watcher = [](double t) {
+    ObservedPlayer o;
+    o.gaze.kind = GazeKind::Item;
+    o.gaze.item = 0;  // the item the other child keeps moving
+    (void)t;
+    return o;
+  };
+  const auto shares = code([](double t) { return plays(t, 0.10, 0); }, watcher, 120);
+  EXPECT_GT(shares[0][kSolitary], 0.85);
+  EXPECT_GT(shares[1][kOnlooker], 0.8);
+}
+
+TEST(Coder, AttentionTheOtherNeverReturnsIsNoExchange) {
+  // The child talks to and looks at a partner that plays on and never attends back: no joint play is coded.
+  const auto shares = code([](double t) { return speaks(plays(t, 0.10, 0), t, Utterance::Proposal, 5.0, 0.0); },
+                           [](double t) { return plays(t, 0.12, 1, 4.0, 2.0); }, 300, /*second_is_robot=*/true);
+  EXPECT_EQ(shares[0][kAssociative] + shares[0][kCooperative], 0.0);
+  EXPECT_GT(shares[0][kParallel], 0.9);
+}
+
+TEST(Coder, OneExchangeIsOneBoutForItsHoldTime) {
+  // One spoken exchange in a minute of parallel play: one associative bout, then parallel again.
+  PairCoder coder(params().coder, false);
+  for (long tick = 0; tick < 600; ++tick) {
+    const double t = tick * 0.1;
+    ObservedPlayer a = plays(t, 0.1, 0);
+    ObservedPlayer b = plays(t, 0.45, 5, 3.0);
+    if (t > 30.0 && t < 32.0) a = speaks(a, t, Utterance::Comment, 100.0, 30.05);
+    if (t > 31.0 && t < 32.0) b = speaks(b, t, Utterance::Comment, 100.0, 31.05);
+    coder.observe(t, a, b);
+  }
+  coder.finish(60.0);
+  for (int who = 0; who < 2; ++who) {
+    int associative_bouts = 0;
+    double associative_s = 0.0;
+    for (const auto& bout : coder.timeline(who)) {
+      if (bout.label != kAssociative) continue;
+      ++associative_bouts;
+      associative_s += bout.stop - bout.start;
+    }
+    EXPECT_EQ(associative_bouts, 1);
+    EXPECT_NEAR(associative_s, params().coder.exchange_hold_s, 0.5);
+  }
+}
+
+TEST(Coder, AgreementAndMergingOfTimelines) {
+  const ChildTimeline internal = {{Axis::TaskEngagement, 0, 0.0, 10.0}, {Axis::SocialEngagement, 4, 0.0, 10.0}};
+  const ChildTimeline coded = {{Axis::SocialEngagement, 4, 0.0, 5.0}, {Axis::SocialEngagement, 2, 5.0, 10.0}};
+  EXPECT_DOUBLE_EQ(timeline_agreement(coded, internal, Axis::SocialEngagement, 10.0), 0.5);
+  const ChildTimeline merged = with_coded_social(internal, coded);
+  ASSERT_EQ(merged.size(), 3U);
+  EXPECT_DOUBLE_EQ(label_shares(merged, Axis::SocialEngagement)[kParallel], 0.5);
+  EXPECT_DOUBLE_EQ(label_shares(merged, Axis::TaskEngagement)[0], 1.0);
+}
+
+// An asocial partner (the stand-in of the real `play` node: it never looks at or talks to the child) cannot hold
+// the child in associative or cooperative play; what remains is side by side.
+TEST(Partnership, UnresponsivePartnerGivesNearZeroJointPlay) {
+  const PopulationStats cr = summarise(simulate_population(params(), Condition::ChildRobot, 60, 77), Condition::ChildRobot);
+  const auto s = static_cast<std::size_t>(Axis::SocialEngagement);
+  EXPECT_LT(cr.labels.share[s][kAssociative] + cr.labels.share[s][kCooperative], 0.02);
+  EXPECT_GT(cr.labels.share[s][kParallel], 0.3);
+  // The same children with a child partner who answers play together most of the time.
+  const PopulationStats cc = summarise(simulate_population(params(), Condition::ChildChild, 60, 77), Condition::ChildChild);
+  EXPECT_GT(cc.labels.share[s][kAssociative] + cc.labels.share[s][kCooperative], 0.45);
+}
+
+// Children who are never answered stop bidding: their expectation of an answer falls.
+TEST(Partnership, UnansweredBidsLowerTheExpectationOfAnAnswer) {
+  int answered = 0, unanswered = 0;
+  for (std::uint64_t seed = 0; seed < 20; ++seed) {
+    SessionConfig config;
+    config.condition = Condition::ChildRobot;
+    const SessionResult s = simulate_session(params(), config, 500 + seed);
+    answered += s.purple.counters.bids_answered;
+    unanswered += s.purple.counters.unanswered_bids;
+  }
+  EXPECT_GT(unanswered, 5 * std::max(answered, 1));
+}
+
+// §8: one coder, both children: their social labels are coupled within the calibration bands.
+TEST(Partnership, DyadIsCodedAsAPair) {
+  const PopulationStats cc = summarise(simulate_population(params(), Condition::ChildChild, 100, 31), Condition::ChildChild);
+  EXPECT_GE(cc.labels.dyad_same_social, 0.75);
+  EXPECT_LE(cc.labels.dyad_same_social, 0.95);
+  EXPECT_GE(cc.labels.dyad_cooperative, 0.35);
+  EXPECT_LE(cc.labels.dyad_cooperative, 0.60);
+}
