@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <deque>
 #include <exception>
 #include <functional>
@@ -20,7 +21,10 @@
 #include "freeplay/core/atomic_file.hpp"
 #include "freeplay/core/error.hpp"
 #include "freeplay/core/task_pool.hpp"
+#include "freeplay/recording/bag_description.hpp"
 #include "freeplay/recording/camera_topics.hpp"
+#include "freeplay/recording/pinsoro_csv.hpp"
+#include "freeplay/recording/publishers.hpp"
 #include "freeplay/recording/robot_links.hpp"
 #include "freeplay/recording/ros_messages.hpp"
 #include "freeplay/recording/session_files.hpp"
@@ -32,12 +36,13 @@ namespace freeplay::recording {
 
 SessionPaths session_paths(const std::filesystem::path& dir) {
   return {dir, dir / "freeplay.bag", dir / "freeplay.bag.active", dir / "experiment.yaml",
-          dir / "freeplay.annotations.freeplay-sim.yaml"};
+          dir / "freeplay.annotations.freeplay-sim.yaml", dir / "freeplay.bag.yaml"};
 }
 
 namespace {
 
 constexpr double kFootprintsAfterS = 1.0;  // the game publishes /footprints once, ~1 s after start
+constexpr double kCameraMaxPhaseS = 0.012;  // a 30 Hz camera's publishing phase stays well inside its 33 ms period
 
 // The URDF joints sandtray → camera links (free-play-sandbox.md §2.4): xyz, rpy.
 struct StaticLink {
@@ -69,6 +74,13 @@ msg::TransformStamped transform(const ros::Time& stamp, const std::string& paren
   tf.transform.translation.z = xyz.z();
   tf.transform.rotation = quaternion(q);
   return tf;
+}
+
+Eigen::Isometry3d pose_of(const Eigen::Vector3d& xyz, const Eigen::Quaterniond& q) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = q.toRotationMatrix();
+  pose.translation() = xyz;
+  return pose;
 }
 
 Eigen::Quaterniond yaw_quaternion(double yaw) { return Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ())); }
@@ -128,6 +140,8 @@ struct BagRecorder::Impl {
   std::uint64_t background_version = ~std::uint64_t{0};
   bool footprints_written = false;
   std::optional<double> freeplay_start;
+  PinsoroCsv csv;           // the collated 30 Hz table of free play
+  PublisherClocks clocks;  // every real publisher's phase and jitter (seeded by the episode)
   std::map<double, std::string> markers;
   std::map<std::string, std::string> notes;
   std::vector<Participant> participants;  // from the first snapshot (profiles complete at the end)
@@ -201,7 +215,12 @@ struct BagRecorder::Impl {
 
   ExperimentInfo experiment(const nlohmann::json* children, bool complete) const {
     ExperimentInfo info;
-    info.header = fmt::format("Synthetic session recorded by freeplay-sim: scenario {}, episode {}, seed {}",
+    const auto start_s = static_cast<std::time_t>(ros_time(freeplay_start.value_or(0.0)).sec);
+    std::tm utc{};
+    gmtime_r(&start_s, &utc);
+    info.header = fmt::format("{:04}-{:02}-{:02} {:02}:{:02}:{:02} UTC: synthetic session recorded by freeplay-sim: "
+                              "scenario {}, episode {}, seed {}",
+                              utc.tm_year + 1900, utc.tm_mon + 1, utc.tm_mday, utc.tm_hour, utc.tm_min, utc.tm_sec,
                               scenario_name, id, seed);
     info.timestamp_ns = ros_time(freeplay_start.value_or(0.0)).toNSec();
     info.condition = pinsoro_condition(condition);
@@ -230,8 +249,24 @@ struct BagRecorder::Impl {
     return info;
   }
 
-  void write_experiment(const nlohmann::json* children, bool complete) const {
-    write_file_atomically(paths.experiment, to_experiment_yaml(experiment(children, complete)));
+  void write_csv(const nlohmann::json& children, const agents::SessionAnnotations& annotations) const {
+    PinsoroSessionInfo table;
+    table.id = id;
+    table.condition = pinsoro_condition(condition);
+    table.annotators = "freeplay-sim";
+    const auto info = experiment(&children, true);
+    if (info.purple) std::tie(table.purple_age, table.purple_gender) = std::pair(info.purple->age, info.purple->gender);
+    if (info.yellow) std::tie(table.yellow_age, table.yellow_gender) = std::pair(info.yellow->age, info.yellow->gender);
+    const auto path = paths.dir / fmt::format("pinsoro-{}.csv", id);
+    write_file_atomically(path, csv.text(table, annotations));
+    write_md5_file(path);
+  }
+
+  void write_experiment(const nlohmann::json* children, bool complete,
+                        const agents::SessionAnnotations* annotations = nullptr) const {
+    auto info = experiment(children, complete);
+    if (annotations != nullptr) info.social_engagement = social_engagement_likert(*annotations);
+    write_file_atomically(paths.experiment, to_experiment_yaml(info));
   }
 
   void close_bag() {
@@ -249,48 +284,56 @@ struct BagRecorder::Impl {
     if (encoding_error) std::rethrow_exception(encoding_error);
   }
 
+  /// Writes `transforms` as one /tf message of `publisher`, stamped when that publisher sends the tick `t`.
+  void put_tf(const std::string& publisher, double t, const std::vector<std::pair<std::string, Eigen::Isometry3d>>& frames,
+              const std::string& parent = "sandtray") {
+    const double published = clocks.publish(publisher, t);
+    const auto stamp = ros_time(published);
+    msg::TFMessage tf;
+    for (const auto& [child, pose] : frames) {
+      tf.transforms.push_back(transform(stamp, parent, child, pose.translation(), Eigen::Quaterniond(pose.rotation())));
+    }
+    put(topics::kTf, published, tf);
+  }
+
   void write_tf(double t, const runner::EpisodeSnapshot& s) {
-    const auto stamp = ros_time(t);
-    msg::TFMessage game;  // the game's TF broadcaster: items and active touches
+    // The game's TF broadcasters: one per item and one per active touch, each on its own 10 Hz timer.
     for (const auto& item : s.tray->items()) {
-      game.transforms.push_back(transform(stamp, "sandtray", item.name, {item.pose.x, item.pose.y, 0.0},
-                                          yaw_quaternion(item.pose.theta)));
+      put_tf("game/" + item.name, t, {{item.name, pose_of({item.pose.x, item.pose.y, 0.0}, yaw_quaternion(item.pose.theta))}});
     }
     for (const auto& touch : s.tray->touches()) {
-      game.transforms.push_back(transform(stamp, "sandtray", fmt::format("touch{}", touch.finger),
-                                          {touch.position.x(), touch.position.y(), 0.0}, Eigen::Quaterniond::Identity()));
+      const auto name = fmt::format("touch{}", touch.finger);
+      put_tf("game/" + name, t, {{name, pose_of({touch.position.x(), touch.position.y(), 0.0}, Eigen::Quaterniond::Identity())}});
     }
-    put(topics::kTf, t, game);
-    msg::TFMessage others;  // sandtray_publisher (URDF camera links), head trackers, robot focus
-    for (const auto& link : kCameraLinks) {
-      others.transforms.push_back(transform(stamp, "sandtray", link.frame, link.xyz, rpy_quaternion(link.rpy)));
-    }
-    for (const auto& child : s.children) {
+    std::vector<std::pair<std::string, Eigen::Isometry3d>> links;  // sandtray_publisher: the URDF camera links
+    for (const auto& link : kCameraLinks) links.emplace_back(link.frame, pose_of(link.xyz, rpy_quaternion(link.rpy)));
+    put_tf("sandtray_publisher", t, links);
+    for (const auto& child : s.children) {  // the head trackers
       const Eigen::Vector3d direction = child.gaze_point - child.head;
       const auto q = direction.norm() > 1e-9 ? Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitX(), direction)
                                               : Eigen::Quaterniond::Identity();
-      others.transforms.push_back(transform(stamp, "sandtray", "child_" + child.seat + "_0", child.head, q));
+      put_tf("gazr/" + child.seat, t, {{"child_" + child.seat + "_0", pose_of(child.head, q)}});
     }
     if (s.robot != nullptr) {
-      others.transforms.push_back(
-          transform(stamp, "sandtray", "robot_focus", s.robot->gaze_point, Eigen::Quaterniond::Identity()));
+      put_tf("robot_focus", t, {{"robot_focus", pose_of(s.robot->gaze_point, Eigen::Quaterniond::Identity())}});
     }
-    put(topics::kTf, t, others);
   }
 
   void write_background(double t, const sim::Sandtray& tray) {
     const cv::Mat& bgr = tray.background();
+    const double published = clocks.publish("sandtray/background", t);
     msg::CompressedImage image;
-    image.header.stamp = ros_time(t);
+    image.header.stamp = ros_time(published);
     image.header.frame_id = ros_string("sandtray");
     image.format = ros_string("rgba8; png compressed bgr8");
     std::vector<std::uint8_t> png;
     cv::imencode(".png", bgr, png, {cv::IMWRITE_PNG_COMPRESSION, settings.png_level});
     image.data.assign(png.begin(), png.end());
-    put(topics::kBackground, t, image, true);
+    put(topics::kBackground, published, image, true);
+    const double zones_published = clocks.publish("zones_from_image", t);
     msg::MarkerArray zones;  // zones_from_image: DELETEALL, then one closed LINE_STRIP per contour
     msg::Marker clear;
-    clear.header = image.header;
+    clear.header.stamp = ros_time(zones_published);
     clear.header.frame_id = ros_string("/sandtray");
     clear.action = msg::Marker::DELETEALL;
     zones.markers.push_back(clear);
@@ -312,15 +355,16 @@ struct BagRecorder::Impl {
       if (!zone.polygon.empty()) m.points.push_back(point(zone.polygon.front().x(), zone.polygon.front().y()));
       zones.markers.push_back(std::move(m));
     }
-    put(topics::kZones, t, zones, true);
+    put(topics::kZones, zones_published, zones, true);
   }
 
   void write_footprints(double t, const sim::Sandtray& tray) {
     msg::MarkerArray footprints;  // FootprintsPublisher: one closed polygon per item, in the item's frame
+    const double published = clocks.publish("footprints", t);
     int marker_id = 0;
     for (const auto& [name, polygon] : tray.published_footprints()) {
       msg::Marker m;
-      m.header.stamp = ros_time(t);
+      m.header.stamp = ros_time(published);
       m.header.frame_id = ros_string("/" + name);
       m.ns = ros_string(name);
       m.id = marker_id++;
@@ -334,33 +378,36 @@ struct BagRecorder::Impl {
       if (!polygon.empty()) m.points.push_back(point(polygon.front().x(), polygon.front().y()));
       footprints.markers.push_back(std::move(m));
     }
-    put(topics::kFootprints, t, footprints, true);
+    put(topics::kFootprints, published, footprints, true);
   }
 
   void write_robot(double t, const runner::RobotSnapshot& robot) {
     msg::JointState joints;
-    joints.header.stamp = ros_time(t);
+    const double published = clocks.publish("naoqi_driver/joint_states", t);
+    joints.header.stamp = ros_time(published);
     for (const auto& name : robot.joint_names) joints.name.push_back(ros_string(name));
     joints.position.assign(robot.positions.begin(), robot.positions.end());
     joints.velocity.assign(robot.velocities.begin(), robot.velocities.end());
     joints.effort.assign(robot.efforts.begin(), robot.efforts.end());
-    put(topics::kJointStates, t, joints);
+    put(topics::kJointStates, published, joints);
     if (nao_links) {  // robot_state_publisher: the URDF links from the joint states, at the /tf rate
+      const double links_published = clocks.publish("robot_state_publisher", t);
       msg::TFMessage links;
       for (const auto& link : nao_links->compute(robot.joint_names, robot.positions)) {
-        links.transforms.push_back(transform(joints.header.stamp, link.parent, link.child,
+        links.transforms.push_back(transform(ros_time(links_published), link.parent, link.child,
                                              link.parent_T_child.translation(),
                                              Eigen::Quaterniond(link.parent_T_child.rotation())));
       }
-      put(topics::kTf, t, links);
+      put(topics::kTf, links_published, links);
     }
     if (robot.finger) {
       msg::PoseStamped pose;
-      pose.header.stamp = ros_time(t);
+      const double pose_published = clocks.publish("move_sandbox_items", t);
+      pose.header.stamp = ros_time(pose_published);
       pose.header.frame_id = ros_string("sandtray");
       pose.pose.position = point(robot.finger->x(), robot.finger->y());
       pose.pose.orientation.w = 1.0;
-      put(topics::kPoses, t, pose);
+      put(topics::kPoses, pose_published, pose);
     }
   }
 
@@ -421,6 +468,7 @@ void BagRecorder::begin(const runner::EpisodeInfo& info) {
   auto& d = *impl_;
   d.id = info.id;
   d.seed = info.seed;
+  d.clocks = PublisherClocks(info.seed);
   if (info.scenario != nullptr) {
     d.condition = info.scenario->condition;
     d.scenario_name = info.scenario->name;
@@ -432,7 +480,9 @@ void BagRecorder::begin(const runner::EpisodeInfo& info) {
     throw InputError(fmt::format("cannot create the session folder '{}': {}", d.paths.dir.string(), error.message()),
                      "record", "a writable run folder (--out)");
   }
-  for (const auto& stale : {d.paths.bag, d.paths.active_bag, d.paths.annotations}) std::filesystem::remove(stale, error);
+  for (const auto& stale : {d.paths.bag, d.paths.active_bag, d.paths.annotations, d.paths.bag_yaml}) {
+    std::filesystem::remove(stale, error);
+  }
   try {
     d.write_experiment(nullptr, false);
     d.bag.open(d.paths.active_bag.string(), rosbag::bagmode::Write);
@@ -464,6 +514,7 @@ void BagRecorder::observe(const runner::EpisodeSnapshot& snapshot) {
   }
   for (const auto& e : snapshot.new_events) d.write_event(t, e);
   d.write_tf(t, snapshot);
+  d.csv.observe(snapshot);
   if (snapshot.tray->background_version() != d.background_version) {
     d.background_version = snapshot.tray->background_version();
     d.write_background(t, *snapshot.tray);
@@ -480,7 +531,9 @@ void BagRecorder::write(const stage::FramePack& frame) {
   auto& d = *impl_;
   if (!d.open) return;
   const auto names = camera_topics(frame.camera);
-  const double t = frame.stamp;
+  // The camera driver stamps each stream when it publishes it: colour and depth each with their own phase.
+  const double t = d.clocks.publish(frame.camera + "/rgb", frame.stamp, kCameraMaxPhaseS);
+  const double t_depth = d.clocks.publish(frame.camera + "/depth", frame.stamp, kCameraMaxPhaseS);
   const auto stamp = ros_time(t);
   const Eigen::Quaterniond q(frame.sandtray_T_camera_optical.rotation());
   const Eigen::Vector3d xyz = frame.sandtray_T_camera_optical.translation();
@@ -508,8 +561,9 @@ void BagRecorder::write(const stage::FramePack& frame) {
   }
   const auto K = frame.K;
   const auto K_depth = frame.K_depth.width > 0 ? frame.K_depth : frame.K;
-  d.pending.push_back({cached.images, [&d, names, t, K, K_depth](const EncodedImages* images) {
+  d.pending.push_back({cached.images, [&d, names, t, t_depth, K, K_depth](const EncodedImages* images) {
                          const auto header_stamp = ros_time(t);
+                         const auto depth_stamp = ros_time(t_depth);
                          if (!images->jpeg.empty()) {
                            msg::CompressedImage image;
                            image.header.stamp = header_stamp;
@@ -521,12 +575,12 @@ void BagRecorder::write(const stage::FramePack& frame) {
                          }
                          if (!images->depth.empty()) {
                            msg::CompressedImage depth;
-                           depth.header.stamp = header_stamp;
+                           depth.header.stamp = depth_stamp;
                            depth.header.frame_id = ros_string(names.depth_frame);
                            depth.format = ros_string("16UC1; compressedDepth");
                            depth.data.assign(images->depth.begin(), images->depth.end());
-                           d.write_now(names.depth_image, t, depth);
-                           d.write_now(names.depth_info, t, camera_info(K_depth, names.depth_frame, header_stamp));
+                           d.write_now(names.depth_image, t_depth, depth);
+                           d.write_now(names.depth_info, t_depth, camera_info(K_depth, names.depth_frame, depth_stamp));
                          }
                          ++d.stats.frames;
                        }});
@@ -562,7 +616,10 @@ void BagRecorder::end(runner::EpisodeResult& result) {
                                                 "Annotations made by freeplay-sim (synthetic ground truth; ROS time)"));
   const auto children = result.record.is_object() ? result.record.value("children", nlohmann::json::object())
                                                   : nlohmann::json::object();
-  d.write_experiment(&children, true);
+  d.write_experiment(&children, true, &result.annotations);
+  write_file_atomically(d.paths.bag_yaml, describe_bag_yaml(d.paths.bag, "freeplay.bag", d.settings.compression));
+  write_md5_file(d.paths.bag);
+  d.write_csv(children, result.annotations);
   result.record["recording"] = (std::filesystem::path("sessions") / d.id).generic_string();
 }
 
