@@ -24,6 +24,7 @@
 #include "freeplay/recording/bag_description.hpp"
 #include "freeplay/recording/camera_topics.hpp"
 #include "freeplay/recording/pinsoro_csv.hpp"
+#include "freeplay/recording/poses.hpp"
 #include "freeplay/recording/publishers.hpp"
 #include "freeplay/recording/robot_links.hpp"
 #include "freeplay/recording/ros_messages.hpp"
@@ -141,6 +142,7 @@ struct BagRecorder::Impl {
   bool footprints_written = false;
   std::optional<double> freeplay_start;
   PinsoroCsv csv;           // the collated 30 Hz table of free play
+  std::unique_ptr<PoseRecorder> poses;  // freeplay.poses.json
   PublisherClocks clocks;  // every real publisher's phase and jitter (seeded by the episode)
   std::map<double, std::string> markers;
   std::map<std::string, std::string> notes;
@@ -514,7 +516,8 @@ void BagRecorder::observe(const runner::EpisodeSnapshot& snapshot) {
   }
   for (const auto& e : snapshot.new_events) d.write_event(t, e);
   d.write_tf(t, snapshot);
-  d.csv.observe(snapshot);
+  if (!d.poses) d.poses = std::make_unique<PoseRecorder>(d.paths.dir);
+  d.csv.observe(snapshot, d.poses->observe(snapshot));
   if (snapshot.tray->background_version() != d.background_version) {
     d.background_version = snapshot.tray->background_version();
     d.write_background(t, *snapshot.tray);
@@ -620,6 +623,9 @@ void BagRecorder::end(runner::EpisodeResult& result) {
   write_file_atomically(d.paths.bag_yaml, describe_bag_yaml(d.paths.bag, "freeplay.bag", d.settings.compression));
   write_md5_file(d.paths.bag);
   d.write_csv(children, result.annotations);
+  if (d.poses) {
+    if (const auto json = d.poses->finish()) write_md5_file(*json);
+  }
   result.record["recording"] = (std::filesystem::path("sessions") / d.id).generic_string();
 }
 
@@ -631,6 +637,7 @@ void BagRecorder::abort() {
     d.close_bag();
   } catch (const std::exception&) {  // the episode's own error is the one to report; the bag is closed
   }
+  if (d.poses) d.poses->discard();
   d.write_experiment(nullptr, false);
 }
 

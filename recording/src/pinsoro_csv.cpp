@@ -59,14 +59,24 @@ std::string label_at(const agents::ChildTimeline& timeline, agents::Axis axis, d
 }
 
 /// One child's columns from frame_idx to the motion columns.
+template <std::size_t N>
+void point_fields(std::string& line, const std::optional<ProjectedKeypoints>& k,
+                  const std::array<ImagePoint, N> ProjectedKeypoints::*points) {
+  for (std::size_t i = 0; i < N; ++i) {
+    const ImagePoint* p = k ? &((*k).*points)[i] : nullptr;
+    line += p != nullptr && p->c > 0.0 ? fmt::format(",{:.5f},{:.5f}", p->x, p->y) : std::string(",,");
+  }
+}
+
 void child_fields(std::string& line, bool present, std::size_t frame, const Eigen::Vector3d& head,
-                  const Eigen::Vector3d& gaze) {
+                  const Eigen::Vector3d& gaze, const std::optional<ProjectedKeypoints>& keypoints) {
   if (!present) {
     line += std::string(1 + 140 + 36 + 6 + 3 + 18 + 5, ',');
     return;
   }
   line += fmt::format(",{}", frame);
-  line += std::string(140 + 36, ',');  // OpenPose face and skeleton: not simulated
+  point_fields(line, keypoints, &ProjectedKeypoints::face);
+  point_fields(line, keypoints, &ProjectedKeypoints::body);
   // Head pose: position in the table-centre frame; rotation vector of the head frame (x axis along the gaze).
   const Eigen::Vector3d x = gaze.normalized();
   const Eigen::AngleAxisd r(Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitX(), x));
@@ -83,9 +93,11 @@ const std::vector<std::string>& pinsoro_csv_columns() {
   return columns;
 }
 
-void PinsoroCsv::observe(const runner::EpisodeSnapshot& s) {
+void PinsoroCsv::observe(const runner::EpisodeSnapshot& s, const std::array<std::optional<ProjectedKeypoints>, 2>& own) {
   if (s.stage != "freeplay") return;
   Row row;
+  row.purple.keypoints = own[0];
+  row.yellow.keypoints = own[1];
   for (const auto& child : s.children) {
     auto& out = child.seat == "purple" ? row.purple : row.yellow;
     out.present = true;
@@ -112,8 +124,9 @@ std::string PinsoroCsv::text(const PinsoroSessionInfo& info, const agents::Sessi
     std::string line = fmt::format("{:.4f},{},{},{},{},{},{},", row.t, info.id, info.condition, info.annotators,
                                    info.complete ? "True" : "False", info.purple_age, info.purple_gender);
     line += yellow_child ? fmt::format("{},{}", info.yellow_age, info.yellow_gender) : std::string(",");
-    child_fields(line, row.purple.present, frame, row.purple.head, row.purple.gaze);
-    child_fields(line, yellow_child && row.yellow.present, frame, row.yellow.head, row.yellow.gaze);
+    child_fields(line, row.purple.present, frame, row.purple.head, row.purple.gaze, row.purple.keypoints);
+    child_fields(line, yellow_child && row.yellow.present, frame, row.yellow.head, row.yellow.gaze,
+                 row.yellow.keypoints);
     line += std::string(16, ',');  // audio features: empty in the real table too
     for (const auto* seat : {&annotations.purple, &annotations.yellow}) {
       const bool shown = seat == &annotations.purple || yellow_child;

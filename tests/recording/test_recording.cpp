@@ -432,6 +432,8 @@ TEST(PinsoroCsv, RealHeaderInTheRealOrderAndOneRowPerFrameOfFreePlay) {
     EXPECT_EQ(fields[2], "childrobot");
     EXPECT_EQ(fields[9], std::to_string(rows));
     EXPECT_FALSE(fields[9 + 1 + 140 + 36].empty());  // head pose
+    EXPECT_FALSE(fields[9 + 1 + 2 * 30].empty());     // the nose (face point 30) in the purple camera
+    EXPECT_FALSE(fields[9 + 1 + 140 + 2].empty());    // the neck
     EXPECT_TRUE(fields[218].empty());                 // the robot replaces the yellow child: yellow fields empty
     EXPECT_TRUE(fields[448].empty());
     ++task[fields[443]];
@@ -445,6 +447,21 @@ TEST(PinsoroCsv, RealHeaderInTheRealOrderAndOneRowPerFrameOfFreePlay) {
     const auto axis = agents::parse_label(label);
     if (!axis || axis->first != agents::Axis::TaskEngagement) continue;
     EXPECT_NEAR(static_cast<double>(task[label]) / static_cast<double>(rows), share.get<double>(), 3.0 / rows) << label;
+  }
+  // freeplay.poses.json: extract_poses' layout, one frame per table row and camera topic.
+  const auto poses = nlohmann::json::parse(std::ifstream(dir / "freeplay.poses.json"));
+  for (const char* topic : {"camera_purple/rgb/image_raw/compressed", "camera_yellow/rgb/image_raw/compressed",
+                            "env_camera/qhd/image_color/compressed"}) {
+    ASSERT_TRUE(poses.contains(topic)) << topic;
+    const auto& frames = poses[topic]["frames"];
+    EXPECT_EQ(frames.size(), rows) << topic;
+    const auto& f = frames[frames.size() / 2];
+    EXPECT_GT(f["ts"].get<double>(), 1.5e9);
+    EXPECT_EQ(f["poses"]["1"].size(), 18U);
+    EXPECT_EQ(f["poses"]["1"][0].size(), 3U);
+    EXPECT_EQ(f["faces"]["1"].size(), 70U);
+    EXPECT_EQ(f["hands"]["1"]["left"].size(), 21U);
+    EXPECT_FALSE(f["poses"].contains("2"));  // no yellow child in a child-robot session
   }
   std::ifstream md5(dir / "pinsoro-tiny-0000.csv.md5");
   std::string hash;

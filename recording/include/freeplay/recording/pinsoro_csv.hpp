@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 
 #include "freeplay/agents/annotations.hpp"
+#include "freeplay/recording/poses.hpp"
 #include "freeplay/runner/episode_observer.hpp"
 
 namespace freeplay::recording {
@@ -28,12 +29,14 @@ struct PinsoroSessionInfo {
 };
 
 /// Collects the ground truth of free play tick by tick and writes the table at the end (labels need the whole
-/// annotation). Columns the simulation cannot supply honestly (OpenPose face and skeleton, action units, optical
-/// flow, audio features) stay empty; docs/dataset.md lists them.
+/// annotation). Columns the simulation cannot supply honestly (action units, optical flow, audio features) stay
+/// empty; docs/dataset.md lists them. Face and skeleton points outside the child's camera image are empty.
 class PinsoroCsv {
  public:
-  /// Records the state of a free-play tick: three 30 Hz rows (the frames since the previous tick) share it.
-  void observe(const runner::EpisodeSnapshot& snapshot);
+  /// Records the state of a free-play tick: three 30 Hz rows (the frames since the previous tick) share it;
+  /// `own` holds each child's keypoints in its own camera, normalised to [0, 1] (purple, yellow).
+  void observe(const runner::EpisodeSnapshot& snapshot,
+               const std::array<std::optional<ProjectedKeypoints>, 2>& own = {});
   /// The CSV text (header + rows); labels come from `annotations` (times: s since free play started).
   std::string text(const PinsoroSessionInfo& info, const agents::SessionAnnotations& annotations) const;
   /// Number of rows collected so far.
@@ -44,6 +47,7 @@ class PinsoroCsv {
     bool present = false;
     Eigen::Vector3d head = Eigen::Vector3d::Zero();  // table-centre frame (m)
     Eigen::Vector3d gaze = Eigen::Vector3d::Zero();  // unit vector, table-centre frame
+    std::optional<ProjectedKeypoints> keypoints;     // in the child's own camera, normalised
   };
   struct Row {
     double t = 0.0;  // s since free play started
