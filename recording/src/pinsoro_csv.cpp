@@ -59,24 +59,32 @@ std::string label_at(const agents::ChildTimeline& timeline, agents::Axis axis, d
 }
 
 /// One child's columns from frame_idx to the motion columns.
-template <std::size_t N>
-void point_fields(std::string& line, const std::optional<ProjectedKeypoints>& k,
-                  const std::array<ImagePoint, N> ProjectedKeypoints::*points) {
-  for (std::size_t i = 0; i < N; ++i) {
-    const ImagePoint* p = k ? &((*k).*points)[i] : nullptr;
-    line += p != nullptr && p->c > 0.0 ? fmt::format(",{:.5f},{:.5f}", p->x, p->y) : std::string(",,");
-  }
+using Points = std::array<Eigen::Vector2f, stage::kFacePoints + stage::kCocoPoints>;
+
+/// Face then skeleton points of one child in its own camera (NaN: not in the image).
+std::optional<Points> own_points(const std::optional<ProjectedKeypoints>& k) {
+  if (!k) return std::nullopt;
+  Points out;
+  auto put = [](const ImagePoint& p) {
+    return p.c > 0.0 ? Eigen::Vector2f(static_cast<float>(p.x), static_cast<float>(p.y))
+                     : Eigen::Vector2f::Constant(std::nanf(""));
+  };
+  for (std::size_t i = 0; i < k->face.size(); ++i) out[i] = put(k->face[i]);
+  for (std::size_t i = 0; i < k->body.size(); ++i) out[k->face.size() + i] = put(k->body[i]);
+  return out;
 }
 
 void child_fields(std::string& line, bool present, std::size_t frame, const Eigen::Vector3d& head,
-                  const Eigen::Vector3d& gaze, const std::optional<ProjectedKeypoints>& keypoints) {
+                  const Eigen::Vector3d& gaze, const std::optional<Points>& keypoints) {
   if (!present) {
     line += std::string(1 + 140 + 36 + 6 + 3 + 18 + 5, ',');
     return;
   }
   line += fmt::format(",{}", frame);
-  point_fields(line, keypoints, &ProjectedKeypoints::face);
-  point_fields(line, keypoints, &ProjectedKeypoints::body);
+  for (std::size_t i = 0; i < std::tuple_size_v<Points>; ++i) {  // OpenPose face, then skeleton
+    const bool shown = keypoints && !std::isnan((*keypoints)[i].x());
+    line += shown ? fmt::format(",{:.5f},{:.5f}", (*keypoints)[i].x(), (*keypoints)[i].y()) : std::string(",,");
+  }
   // Head pose: position in the table-centre frame; rotation vector of the head frame (x axis along the gaze).
   const Eigen::Vector3d x = gaze.normalized();
   const Eigen::AngleAxisd r(Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitX(), x));
@@ -96,8 +104,8 @@ const std::vector<std::string>& pinsoro_csv_columns() {
 void PinsoroCsv::observe(const runner::EpisodeSnapshot& s, const std::array<std::optional<ProjectedKeypoints>, 2>& own) {
   if (s.stage != "freeplay") return;
   Row row;
-  row.purple.keypoints = own[0];
-  row.yellow.keypoints = own[1];
+  row.purple.keypoints = own_points(own[0]);
+  row.yellow.keypoints = own_points(own[1]);
   for (const auto& child : s.children) {
     auto& out = child.seat == "purple" ? row.purple : row.yellow;
     out.present = true;

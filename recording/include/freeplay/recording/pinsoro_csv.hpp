@@ -47,7 +47,8 @@ class PinsoroCsv {
     bool present = false;
     Eigen::Vector3d head = Eigen::Vector3d::Zero();  // table-centre frame (m)
     Eigen::Vector3d gaze = Eigen::Vector3d::Zero();  // unit vector, table-centre frame
-    std::optional<ProjectedKeypoints> keypoints;     // in the child's own camera, normalised
+    // Face (70) then skeleton (18) points in the child's own camera, normalised; NaN where not in the image.
+    std::optional<std::array<Eigen::Vector2f, stage::kFacePoints + stage::kCocoPoints>> keypoints;
   };
   struct Row {
     double t = 0.0;  // s since free play started
