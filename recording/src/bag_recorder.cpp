@@ -21,6 +21,8 @@
 #include "freeplay/core/atomic_file.hpp"
 #include "freeplay/core/error.hpp"
 #include "freeplay/core/task_pool.hpp"
+#include "freeplay/recording/audio.hpp"
+#include "freeplay/recording/audio_data.hpp"
 #include "freeplay/recording/bag_description.hpp"
 #include "freeplay/recording/camera_topics.hpp"
 #include "freeplay/recording/pinsoro_csv.hpp"
@@ -44,6 +46,12 @@ namespace {
 
 constexpr double kFootprintsAfterS = 1.0;  // the game publishes /footprints once, ~1 s after start
 constexpr double kCameraMaxPhaseS = 0.012;  // a 30 Hz camera's publishing phase stays well inside its 33 ms period
+// Voices of the adults (the babble voice; docs/recording.md): pitch, articulation rate and where they speak from.
+constexpr double kRobotPitchHz = 200.0;
+constexpr double kExperimenterPitchHz = 210.0;
+constexpr double kAdultSyllablesPerS = 4.0;
+const Eigen::Vector3d kRobotMouth(0.3, 0.15, 0.40);         // the NAO's head, standing on the yellow side
+const Eigen::Vector3d kExperimenterMouth(-0.8, -0.17, 0.9);  // standing beside the table
 
 // The URDF joints sandtray → camera links (free-play-sandbox.md §2.4): xyz, rpy.
 struct StaticLink {
@@ -143,6 +151,8 @@ struct BagRecorder::Impl {
   std::optional<double> freeplay_start;
   PinsoroCsv csv;           // the collated 30 Hz table of free play
   std::unique_ptr<PoseRecorder> poses;  // freeplay.poses.json
+  std::vector<std::pair<std::string, std::unique_ptr<MicrophoneStream>>> microphones;  // topic → SR300 microphone
+  std::uint64_t utterances = 0;
   PublisherClocks clocks;  // every real publisher's phase and jitter (seeded by the episode)
   std::map<double, std::string> markers;
   std::map<std::string, std::string> notes;
@@ -413,6 +423,37 @@ struct BagRecorder::Impl {
     }
   }
 
+  /// Every utterance of the tick becomes sound in both microphones; the MP3 frames completed so far are written.
+  void write_audio(double t, const runner::EpisodeSnapshot& s, bool last = false) {
+    for (const auto& e : s.new_events) {
+      const bool child = e.source.rfind("child.", 0) == 0 && e.type == "speech";
+      const bool adult = (e.source == "robot" || e.source == "experimenter") && e.type == "say";
+      if (!child && !adult) continue;
+      Utterance u;
+      u.start_s = e.t;
+      u.duration_s = e.data.value("duration_s", 0.0);
+      u.syllables = e.data.value("syllables", std::max(1, static_cast<int>(std::lround(kAdultSyllablesPerS * u.duration_s))));
+      u.seed = splitmix64(seed ^ fnv1a64(e.source) ^ ++utterances);
+      u.pitch_hz = e.source == "robot" ? kRobotPitchHz : kExperimenterPitchHz;
+      u.mouth = e.source == "robot" ? kRobotMouth : kExperimenterMouth;
+      for (const auto& c : s.children) {
+        if (child && "child." + c.seat == e.source) {
+          u.pitch_hz = child_pitch_hz(c.age_years);
+          u.mouth = c.head;
+        }
+      }
+      const auto voice = babble(u);
+      for (auto& [topic, mic] : microphones) mic->add(u, voice);
+    }
+    for (auto& [topic, mic] : microphones) {
+      for (auto& [captured, bytes] : last ? mic->finish() : mic->advance(t)) {
+        msg::AudioData chunk;
+        chunk.data.assign(bytes.begin(), bytes.end());
+        put(topic, clocks.publish(topic, captured, kCameraMaxPhaseS), chunk);
+      }
+    }
+  }
+
   void write_event(double t, const Event& e) {
     auto json = e.to_json();
     json["tick"] = t;
@@ -492,6 +533,16 @@ void BagRecorder::begin(const runner::EpisodeInfo& info) {
     throw InputError(fmt::format("cannot write the session folder '{}': {}", d.paths.dir.string(), e.what()),
                      "record", "a writable run folder (--out)");
   }
+  std::filesystem::create_directories(d.paths.dir / "audio");
+  for (const char* camera : {"camera_purple", "camera_yellow"}) {  // the SR300s' microphones (audio_capture)
+    const auto link = std::find_if(std::begin(kCameraLinks), std::end(kCameraLinks), [&](const StaticLink& l) {
+      return std::string(l.frame) == std::string(camera) + "_link";
+    });
+    d.microphones.emplace_back(std::string(camera) + "/audio",
+                               std::make_unique<MicrophoneStream>(link->xyz, d.paths.dir / "audio" /
+                                                                                 fmt::format("freeplay_{}_audio", camera),
+                                                                  splitmix64(d.seed ^ fnv1a64(camera))));
+  }
   d.bag.get().setChunkThreshold(static_cast<std::uint32_t>(d.settings.chunk_kb) * 1024U);
   d.bag.get().setCompression(compression_of(d.settings.compression));
   d.open = true;
@@ -518,6 +569,7 @@ void BagRecorder::observe(const runner::EpisodeSnapshot& snapshot) {
   d.write_tf(t, snapshot);
   if (!d.poses) d.poses = std::make_unique<PoseRecorder>(d.paths.dir);
   d.csv.observe(snapshot, d.poses->observe(snapshot));
+  d.write_audio(t, snapshot);
   if (snapshot.tray->background_version() != d.background_version) {
     d.background_version = snapshot.tray->background_version();
     d.write_background(t, *snapshot.tray);
@@ -612,6 +664,7 @@ void BagRecorder::end(runner::EpisodeResult& result) {
   msg::String annotations;
   annotations.data = ros_string(agents::to_pinsoro_yaml(result.annotations, 0.0, header));
   d.put(topics::kAnnotations, end_t, annotations, true);
+  d.write_audio(end_t, runner::EpisodeSnapshot{}, true);
   d.close_bag();
   const double base = ros_time(d.freeplay_start.value_or(0.0)).toSec();
   write_file_atomically(d.paths.annotations,

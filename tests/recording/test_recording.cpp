@@ -10,6 +10,8 @@
 
 #include "freeplay/core/error.hpp"
 #include "freeplay/recording/bag_recorder.hpp"
+#include "freeplay/recording/audio.hpp"
+#include "freeplay/recording/audio_data.hpp"
 #include "freeplay/recording/bag_description.hpp"
 #include "freeplay/recording/camera_topics.hpp"
 #include "freeplay/recording/pinsoro_csv.hpp"
@@ -315,7 +317,8 @@ want = {{'/tf': 'tf2_msgs/TFMessage', '/footprints': 'visualization_msgs/MarkerA
         'camera_purple/rgb/image_raw/compressed': 'sensor_msgs/CompressedImage',
         'camera_purple/rgb/camera_info': 'sensor_msgs/CameraInfo',
         'camera_purple/depth/image_raw/compressedDepth': 'sensor_msgs/CompressedImage',
-        'camera_purple/depth/camera_info': 'sensor_msgs/CameraInfo'}}
+        'camera_purple/depth/camera_info': 'sensor_msgs/CameraInfo',
+        'camera_purple/audio': 'audio_common_msgs/AudioData', 'camera_yellow/audio': 'audio_common_msgs/AudioData'}}
 bad = []
 for topic, kind in want.items():
     if topic not in info or info[topic].msg_type != kind: bad.append('type ' + topic)
@@ -323,6 +326,11 @@ for topic in ['camera_purple/rgb/image_raw/compressed', 'camera_purple/rgb/camer
               'camera_purple/depth/image_raw/compressedDepth', 'camera_purple/depth/camera_info']:
     f = info[topic].frequency
     if f is None or abs(f - 30.5) > 3: bad.append('rate %s %s' % (topic, f))
+for topic in ['camera_purple/audio', 'camera_yellow/audio']:
+    f = info[topic].frequency
+    if f is None or abs(f - 25.7) > 3: bad.append('rate %s %s' % (topic, f))
+md5 = {{c.topic: c.md5sum for c in b._get_connections()}}
+if md5['camera_purple/audio'] != 'f43a8e1b362b75baa741461b46adc7e0': bad.append('AudioData md5')
 if info['/tf'].frequency is None or info['/tf'].frequency < 100: bad.append('tf rate %s' % info['/tf'].frequency)
 if any(t.startswith('/camera') or t.startswith('/env_camera') for t in info): bad.append('leading slash')
 latched = {{c.topic for c in b._get_connections() if c.header.get('latching') in (b'1', '1')}}
@@ -343,6 +351,66 @@ sys.exit(1 if bad else 0)
   ASSERT_EQ(std::system(fmt::format("rosbag info --yaml --freq {} | tail -n +2 > {}", bag.string(), theirs.string()).c_str()),
             0);
   EXPECT_EQ(std::system(fmt::format("diff {} {}", ours.string(), theirs.string()).c_str()), 0);
+}
+
+TEST(Audio, EveryUtteranceIsHeardWhereTheEventsSayAndTheBagCarriesTheMp3) {
+  const auto& r = child_robot();
+  const auto dir = bag_path(r).parent_path();
+  // The bag's chunks are the MP3 file, one 16 kHz 128 kbps MPEG-2 layer III frame each.
+  std::vector<std::uint8_t> chunks;
+  std::size_t messages = 0;
+  {
+    rosbag::Bag bag(bag_path(r).string());
+    for (const auto& m : rosbag::View(bag, rosbag::TopicQuery("camera_purple/audio"))) {
+      EXPECT_EQ(m.getDataType(), "audio_common_msgs/AudioData");
+      const auto chunk = m.instantiate<msg::AudioData>();
+      ASSERT_TRUE(chunk);
+      ASSERT_GE(chunk->data.size(), 4U);
+      if (chunk->data.size() == static_cast<std::size_t>(kMp3FrameBytes)) {
+        EXPECT_EQ(chunk->data[0], 0xFF);
+        EXPECT_EQ(chunk->data[1] & 0xF0, 0xF0);  // frame sync, MPEG-2 (bit 3 clear)
+      }
+      chunks.insert(chunks.end(), chunk->data.begin(), chunk->data.end());
+      ++messages;
+    }
+  }
+  auto bytes_of = [](const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    return std::vector<std::uint8_t>(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  };
+  EXPECT_EQ(chunks, bytes_of(dir / "audio" / "freeplay_camera_purple_audio.mp3"));
+  EXPECT_NEAR(static_cast<double>(messages), r.result.simulated_s * kAudioRate / kMp3FrameSamples, 4.0);
+  // A voice-activity check on the purple microphone finds every utterance that starts after a silence within 100 ms.
+  const auto samples = read_wav(dir / "audio" / "freeplay_camera_purple_audio.wav");
+  EXPECT_NEAR(static_cast<double>(samples.size()), r.result.simulated_s * kAudioRate, 2.0);
+  const auto onsets = voice_onsets_s(samples);
+  std::vector<std::pair<double, double>> spoken;  // start, end
+  for (const auto& e : r.result.events.events()) {
+    if ((e.type == "speech" && e.source.rfind("child.", 0) == 0) || (e.type == "say" && e.source == "robot")) {
+      spoken.emplace_back(e.t, e.t + e.data.value("duration_s", 0.0));
+    }
+  }
+  ASSERT_FALSE(spoken.empty());
+  int checked = 0;
+  for (const auto& [start, end] : spoken) {
+    const bool after_silence = std::none_of(spoken.begin(), spoken.end(), [&](const auto& o) {
+      return o.first < start && o.second > start - 0.4;
+    });
+    if (!after_silence) continue;
+    const auto near = std::find_if(onsets.begin(), onsets.end(), [&](double o) { return std::abs(o - start) <= 0.1; });
+    EXPECT_NE(near, onsets.end()) << "utterance at " << start << " s";
+    ++checked;
+  }
+  EXPECT_GT(checked, 0);
+  // Nothing is heard where nobody speaks.
+  for (const double o : onsets) {
+    EXPECT_TRUE(std::any_of(spoken.begin(), spoken.end(), [&](const auto& u) { return o >= u.first - 0.1 && o <= u.second + 0.1; }))
+        << "onset at " << o << " s";
+  }
+  // Deterministic per seed: the same episode gives the same sound.
+  const auto again = record_episode("cr-again", "child-robot");
+  EXPECT_EQ(bytes_of(dir / "audio" / "freeplay_camera_purple_audio.mp3"),
+            bytes_of(again.run_dir / "sessions" / "tiny-0000" / "audio" / "freeplay_camera_purple_audio.mp3"));
 }
 
 TEST(BagRecorder, PublishersHaveTheirOwnPhaseAndSeededJitter) {
