@@ -32,6 +32,17 @@ std::string session_folder_name(std::int64_t ordinal) {
                      utc.tm_hour, utc.tm_min, utc.tm_sec);
 }
 
+/// Moves a session's camera videos (`video: true` cameras) to the real names `videos/camera_<c>_raw.<ext>`.
+void move_videos(const std::filesystem::path& from, const std::filesystem::path& to) {
+  if (!std::filesystem::is_directory(from)) return;
+  std::filesystem::create_directories(to);
+  for (const auto& entry : std::filesystem::directory_iterator(from)) {
+    const auto camera = entry.path().stem().string();
+    const std::string real = camera == "env_camera" ? "camera_env" : camera;
+    std::filesystem::rename(entry.path(), to / (real + "_raw" + entry.path().extension().string()));
+  }
+}
+
 struct DatasetOptions {
   RunCommandOptions run;
 };
@@ -76,6 +87,7 @@ void dataset_command(const DatasetOptions& o) {
       if (!std::filesystem::exists(target / "freeplay.bag.md5") && std::filesystem::exists(source / "freeplay.bag.md5")) {
         std::filesystem::remove_all(target);
         std::filesystem::rename(source, target);
+        move_videos(root / "run" / "videos" / id, target / "videos");
         ++moved;
       }
       const auto it = records.find(id);
