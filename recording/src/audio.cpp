@@ -145,6 +145,7 @@ MicrophoneStream::MicrophoneStream(Eigen::Vector3d position, const std::filesyst
   lame_set_brate(d.lame, 128);
   lame_set_VBR(d.lame, vbr_off);
   lame_set_bWriteVbrTag(d.lame, 0);
+  lame_set_quality(d.lame, 7);  // LAME's fast algorithm choice (2 = best, 9 = fastest): it was a third of the time
   if (lame_init_params(d.lame) < 0) throw std::runtime_error("LAME refused 16 kHz mono 128 kbps");
 }
 
