@@ -31,6 +31,7 @@
 #include "freeplay/recording/robot_links.hpp"
 #include "freeplay/recording/ros_messages.hpp"
 #include "freeplay/recording/session_files.hpp"
+#include "message_builders.hpp"
 #include "freeplay/sim/sandtray.hpp"
 #include "freeplay/sim/screen.hpp"
 #include "freeplay/sim/zones.hpp"
@@ -44,6 +45,14 @@ SessionPaths session_paths(const std::filesystem::path& dir) {
 
 namespace {
 
+using detail::kCameraLinks;
+using detail::point;
+using detail::pose_of;
+using detail::rpy_quaternion;
+using detail::StaticLink;
+using detail::transform;
+using detail::yaw_quaternion;
+
 constexpr double kFootprintsAfterS = 1.0;  // the game publishes /footprints once, ~1 s after start
 constexpr double kCameraMaxPhaseS = 0.012;  // a 30 Hz camera's publishing phase stays well inside its 33 ms period
 // Voices of the adults (the babble voice; docs/recording.md): pitch, articulation rate and where they speak from.
@@ -52,61 +61,6 @@ constexpr double kExperimenterPitchHz = 210.0;
 constexpr double kAdultSyllablesPerS = 4.0;
 const Eigen::Vector3d kRobotMouth(0.3, 0.15, 0.40);         // the NAO's head, standing on the yellow side
 const Eigen::Vector3d kExperimenterMouth(-0.8, -0.17, 0.9);  // standing beside the table
-
-// The URDF joints sandtray → camera links (free-play-sandbox.md §2.4): xyz, rpy.
-struct StaticLink {
-  const char* frame;
-  Eigen::Vector3d xyz;
-  Eigen::Vector3d rpy;
-};
-const StaticLink kCameraLinks[] = {{"camera_purple_link", {-0.108, 0.021, 0.035}, {0, -0.349, -0.785}},
-                                   {"camera_yellow_link", {-0.108, -0.377, 0.035}, {0, -0.349, 0.785}},
-                                   {"env_camera_link", {1.4, -0.15, 0.52}, {0, 0.29, 3.142}}};
-
-msg::Quaternion quaternion(const Eigen::Quaterniond& q) {
-  msg::Quaternion out;
-  out.x = q.x();
-  out.y = q.y();
-  out.z = q.z();
-  out.w = q.w();
-  return out;
-}
-
-msg::TransformStamped transform(const ros::Time& stamp, const std::string& parent, const std::string& child,
-                                const Eigen::Vector3d& xyz, const Eigen::Quaterniond& q) {
-  msg::TransformStamped tf;
-  tf.header.stamp = stamp;
-  tf.header.frame_id = ros_string(parent);
-  tf.child_frame_id = ros_string(child);
-  tf.transform.translation.x = xyz.x();
-  tf.transform.translation.y = xyz.y();
-  tf.transform.translation.z = xyz.z();
-  tf.transform.rotation = quaternion(q);
-  return tf;
-}
-
-Eigen::Isometry3d pose_of(const Eigen::Vector3d& xyz, const Eigen::Quaterniond& q) {
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.linear() = q.toRotationMatrix();
-  pose.translation() = xyz;
-  return pose;
-}
-
-Eigen::Quaterniond yaw_quaternion(double yaw) { return Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ())); }
-
-Eigen::Quaterniond rpy_quaternion(const Eigen::Vector3d& rpy) {
-  return Eigen::Quaterniond(Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()) *
-                            Eigen::AngleAxisd(rpy.y(), Eigen::Vector3d::UnitY()) *
-                            Eigen::AngleAxisd(rpy.x(), Eigen::Vector3d::UnitX()));
-}
-
-msg::Point point(double x, double y, double z = 0.0) {
-  msg::Point p;
-  p.x = x;
-  p.y = y;
-  p.z = z;
-  return p;
-}
 
 rosbag::compression::CompressionType compression_of(const std::string& name) {
   if (name == "lz4") return rosbag::compression::LZ4;
