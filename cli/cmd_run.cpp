@@ -10,6 +10,7 @@
 
 #include "command_registry.hpp"
 #include "episode_observers.hpp"
+#include "run_command.hpp"
 #include "freeplay/core/atomic_file.hpp"
 #include "freeplay/core/error.hpp"
 #include "freeplay/runner/episode.hpp"
@@ -25,19 +26,6 @@ std::atomic<bool> g_stop{false};
 extern "C" void on_interrupt(int /*signal*/) {
   if (g_stop.exchange(true)) std::_Exit(130);  // a second Ctrl-C quits at once
 }
-
-struct RunCommandOptions {
-  std::string file;
-  std::optional<int> episodes;
-  std::optional<std::uint64_t> seed;
-  int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  std::string out;
-  std::vector<std::string> overrides;
-  std::string shard;
-  bool quiet = false;
-  bool no_summary = false;
-  bool record = false;
-};
 
 std::pair<int, int> parse_shard(const std::string& text) {
   int i = 0;
@@ -82,6 +70,8 @@ std::optional<std::filesystem::path> unfinished_run(const nlohmann::json& identi
   }
   return best;
 }
+
+}  // namespace
 
 void run_command(const RunCommandOptions& o, bool suite_command) {
   std::vector<std::string> overrides = o.overrides;
@@ -151,6 +141,8 @@ void run_command(const RunCommandOptions& o, bool suite_command) {
   }
   if (!o.quiet) std::cerr << fmt::format("run folder: {}\n", out.string());
 }
+
+namespace {
 
 void add_run_options(CLI::App* cmd, const std::shared_ptr<RunCommandOptions>& o, const char* what) {
   cmd->add_option("file", o->file, what)->required()->check(CLI::ExistingFile);

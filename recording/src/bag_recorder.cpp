@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <deque>
 #include <exception>
 #include <functional>
@@ -20,10 +21,17 @@
 #include "freeplay/core/atomic_file.hpp"
 #include "freeplay/core/error.hpp"
 #include "freeplay/core/task_pool.hpp"
+#include "freeplay/recording/audio.hpp"
+#include "freeplay/recording/audio_data.hpp"
+#include "freeplay/recording/bag_description.hpp"
 #include "freeplay/recording/camera_topics.hpp"
+#include "freeplay/recording/pinsoro_csv.hpp"
+#include "freeplay/recording/poses.hpp"
+#include "freeplay/recording/publishers.hpp"
 #include "freeplay/recording/robot_links.hpp"
 #include "freeplay/recording/ros_messages.hpp"
 #include "freeplay/recording/session_files.hpp"
+#include "message_builders.hpp"
 #include "freeplay/sim/sandtray.hpp"
 #include "freeplay/sim/screen.hpp"
 #include "freeplay/sim/zones.hpp"
@@ -32,60 +40,27 @@ namespace freeplay::recording {
 
 SessionPaths session_paths(const std::filesystem::path& dir) {
   return {dir, dir / "freeplay.bag", dir / "freeplay.bag.active", dir / "experiment.yaml",
-          dir / "freeplay.annotations.freeplay-sim.yaml"};
+          dir / "freeplay.annotations.freeplay-sim.yaml", dir / "freeplay.bag.yaml"};
 }
 
 namespace {
 
+using detail::kCameraLinks;
+using detail::point;
+using detail::pose_of;
+using detail::rpy_quaternion;
+using detail::StaticLink;
+using detail::transform;
+using detail::yaw_quaternion;
+
 constexpr double kFootprintsAfterS = 1.0;  // the game publishes /footprints once, ~1 s after start
-
-// The URDF joints sandtray → camera links (free-play-sandbox.md §2.4): xyz, rpy.
-struct StaticLink {
-  const char* frame;
-  Eigen::Vector3d xyz;
-  Eigen::Vector3d rpy;
-};
-const StaticLink kCameraLinks[] = {{"camera_purple_link", {-0.108, 0.021, 0.035}, {0, -0.349, -0.785}},
-                                   {"camera_yellow_link", {-0.108, -0.377, 0.035}, {0, -0.349, 0.785}},
-                                   {"env_camera_link", {1.4, -0.15, 0.52}, {0, 0.29, 3.142}}};
-
-msg::Quaternion quaternion(const Eigen::Quaterniond& q) {
-  msg::Quaternion out;
-  out.x = q.x();
-  out.y = q.y();
-  out.z = q.z();
-  out.w = q.w();
-  return out;
-}
-
-msg::TransformStamped transform(const ros::Time& stamp, const std::string& parent, const std::string& child,
-                                const Eigen::Vector3d& xyz, const Eigen::Quaterniond& q) {
-  msg::TransformStamped tf;
-  tf.header.stamp = stamp;
-  tf.header.frame_id = ros_string(parent);
-  tf.child_frame_id = ros_string(child);
-  tf.transform.translation.x = xyz.x();
-  tf.transform.translation.y = xyz.y();
-  tf.transform.translation.z = xyz.z();
-  tf.transform.rotation = quaternion(q);
-  return tf;
-}
-
-Eigen::Quaterniond yaw_quaternion(double yaw) { return Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ())); }
-
-Eigen::Quaterniond rpy_quaternion(const Eigen::Vector3d& rpy) {
-  return Eigen::Quaterniond(Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()) *
-                            Eigen::AngleAxisd(rpy.y(), Eigen::Vector3d::UnitY()) *
-                            Eigen::AngleAxisd(rpy.x(), Eigen::Vector3d::UnitX()));
-}
-
-msg::Point point(double x, double y, double z = 0.0) {
-  msg::Point p;
-  p.x = x;
-  p.y = y;
-  p.z = z;
-  return p;
-}
+constexpr double kCameraMaxPhaseS = 0.012;  // a 30 Hz camera's publishing phase stays well inside its 33 ms period
+// Voices of the adults (the babble voice; docs/recording.md): pitch, articulation rate and where they speak from.
+constexpr double kRobotPitchHz = 200.0;
+constexpr double kExperimenterPitchHz = 210.0;
+constexpr double kAdultSyllablesPerS = 4.0;
+const Eigen::Vector3d kRobotMouth(0.3, 0.15, 0.40);         // the NAO's head, standing on the yellow side
+const Eigen::Vector3d kExperimenterMouth(-0.8, -0.17, 0.9);  // standing beside the table
 
 rosbag::compression::CompressionType compression_of(const std::string& name) {
   if (name == "lz4") return rosbag::compression::LZ4;
@@ -128,6 +103,11 @@ struct BagRecorder::Impl {
   std::uint64_t background_version = ~std::uint64_t{0};
   bool footprints_written = false;
   std::optional<double> freeplay_start;
+  PinsoroCsv csv;           // the collated 30 Hz table of free play
+  std::unique_ptr<PoseRecorder> poses;  // freeplay.poses.json
+  std::vector<std::pair<std::string, std::unique_ptr<MicrophoneStream>>> microphones;  // topic → SR300 microphone
+  std::uint64_t utterances = 0;
+  PublisherClocks clocks;  // every real publisher's phase and jitter (seeded by the episode)
   std::map<double, std::string> markers;
   std::map<std::string, std::string> notes;
   std::vector<Participant> participants;  // from the first snapshot (profiles complete at the end)
@@ -201,7 +181,12 @@ struct BagRecorder::Impl {
 
   ExperimentInfo experiment(const nlohmann::json* children, bool complete) const {
     ExperimentInfo info;
-    info.header = fmt::format("Synthetic session recorded by freeplay-sim: scenario {}, episode {}, seed {}",
+    const auto start_s = static_cast<std::time_t>(ros_time(freeplay_start.value_or(0.0)).sec);
+    std::tm utc{};
+    gmtime_r(&start_s, &utc);
+    info.header = fmt::format("{:04}-{:02}-{:02} {:02}:{:02}:{:02} UTC: synthetic session recorded by freeplay-sim: "
+                              "scenario {}, episode {}, seed {}",
+                              utc.tm_year + 1900, utc.tm_mon + 1, utc.tm_mday, utc.tm_hour, utc.tm_min, utc.tm_sec,
                               scenario_name, id, seed);
     info.timestamp_ns = ros_time(freeplay_start.value_or(0.0)).toNSec();
     info.condition = pinsoro_condition(condition);
@@ -230,8 +215,24 @@ struct BagRecorder::Impl {
     return info;
   }
 
-  void write_experiment(const nlohmann::json* children, bool complete) const {
-    write_file_atomically(paths.experiment, to_experiment_yaml(experiment(children, complete)));
+  void write_csv(const nlohmann::json& children, const agents::SessionAnnotations& annotations) const {
+    PinsoroSessionInfo table;
+    table.id = id;
+    table.condition = pinsoro_condition(condition);
+    table.annotators = "freeplay-sim";
+    const auto info = experiment(&children, true);
+    if (info.purple) std::tie(table.purple_age, table.purple_gender) = std::pair(info.purple->age, info.purple->gender);
+    if (info.yellow) std::tie(table.yellow_age, table.yellow_gender) = std::pair(info.yellow->age, info.yellow->gender);
+    const auto path = paths.dir / fmt::format("pinsoro-{}.csv", id);
+    write_file_atomically(path, csv.text(table, annotations));
+    write_md5_file(path);
+  }
+
+  void write_experiment(const nlohmann::json* children, bool complete,
+                        const agents::SessionAnnotations* annotations = nullptr) const {
+    auto info = experiment(children, complete);
+    if (annotations != nullptr) info.social_engagement = social_engagement_likert(*annotations);
+    write_file_atomically(paths.experiment, to_experiment_yaml(info));
   }
 
   void close_bag() {
@@ -249,48 +250,56 @@ struct BagRecorder::Impl {
     if (encoding_error) std::rethrow_exception(encoding_error);
   }
 
+  /// Writes `transforms` as one /tf message of `publisher`, stamped when that publisher sends the tick `t`.
+  void put_tf(const std::string& publisher, double t, const std::vector<std::pair<std::string, Eigen::Isometry3d>>& frames,
+              const std::string& parent = "sandtray") {
+    const double published = clocks.publish(publisher, t);
+    const auto stamp = ros_time(published);
+    msg::TFMessage tf;
+    for (const auto& [child, pose] : frames) {
+      tf.transforms.push_back(transform(stamp, parent, child, pose.translation(), Eigen::Quaterniond(pose.rotation())));
+    }
+    put(topics::kTf, published, tf);
+  }
+
   void write_tf(double t, const runner::EpisodeSnapshot& s) {
-    const auto stamp = ros_time(t);
-    msg::TFMessage game;  // the game's TF broadcaster: items and active touches
+    // The game's TF broadcasters: one per item and one per active touch, each on its own 10 Hz timer.
     for (const auto& item : s.tray->items()) {
-      game.transforms.push_back(transform(stamp, "sandtray", item.name, {item.pose.x, item.pose.y, 0.0},
-                                          yaw_quaternion(item.pose.theta)));
+      put_tf("game/" + item.name, t, {{item.name, pose_of({item.pose.x, item.pose.y, 0.0}, yaw_quaternion(item.pose.theta))}});
     }
     for (const auto& touch : s.tray->touches()) {
-      game.transforms.push_back(transform(stamp, "sandtray", fmt::format("touch{}", touch.finger),
-                                          {touch.position.x(), touch.position.y(), 0.0}, Eigen::Quaterniond::Identity()));
+      const auto name = fmt::format("touch{}", touch.finger);
+      put_tf("game/" + name, t, {{name, pose_of({touch.position.x(), touch.position.y(), 0.0}, Eigen::Quaterniond::Identity())}});
     }
-    put(topics::kTf, t, game);
-    msg::TFMessage others;  // sandtray_publisher (URDF camera links), head trackers, robot focus
-    for (const auto& link : kCameraLinks) {
-      others.transforms.push_back(transform(stamp, "sandtray", link.frame, link.xyz, rpy_quaternion(link.rpy)));
-    }
-    for (const auto& child : s.children) {
+    std::vector<std::pair<std::string, Eigen::Isometry3d>> links;  // sandtray_publisher: the URDF camera links
+    for (const auto& link : kCameraLinks) links.emplace_back(link.frame, pose_of(link.xyz, rpy_quaternion(link.rpy)));
+    put_tf("sandtray_publisher", t, links);
+    for (const auto& child : s.children) {  // the head trackers
       const Eigen::Vector3d direction = child.gaze_point - child.head;
       const auto q = direction.norm() > 1e-9 ? Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitX(), direction)
                                               : Eigen::Quaterniond::Identity();
-      others.transforms.push_back(transform(stamp, "sandtray", "child_" + child.seat + "_0", child.head, q));
+      put_tf("gazr/" + child.seat, t, {{"child_" + child.seat + "_0", pose_of(child.head, q)}});
     }
     if (s.robot != nullptr) {
-      others.transforms.push_back(
-          transform(stamp, "sandtray", "robot_focus", s.robot->gaze_point, Eigen::Quaterniond::Identity()));
+      put_tf("robot_focus", t, {{"robot_focus", pose_of(s.robot->gaze_point, Eigen::Quaterniond::Identity())}});
     }
-    put(topics::kTf, t, others);
   }
 
   void write_background(double t, const sim::Sandtray& tray) {
     const cv::Mat& bgr = tray.background();
+    const double published = clocks.publish("sandtray/background", t);
     msg::CompressedImage image;
-    image.header.stamp = ros_time(t);
+    image.header.stamp = ros_time(published);
     image.header.frame_id = ros_string("sandtray");
     image.format = ros_string("rgba8; png compressed bgr8");
     std::vector<std::uint8_t> png;
     cv::imencode(".png", bgr, png, {cv::IMWRITE_PNG_COMPRESSION, settings.png_level});
     image.data.assign(png.begin(), png.end());
-    put(topics::kBackground, t, image, true);
+    put(topics::kBackground, published, image, true);
+    const double zones_published = clocks.publish("zones_from_image", t);
     msg::MarkerArray zones;  // zones_from_image: DELETEALL, then one closed LINE_STRIP per contour
     msg::Marker clear;
-    clear.header = image.header;
+    clear.header.stamp = ros_time(zones_published);
     clear.header.frame_id = ros_string("/sandtray");
     clear.action = msg::Marker::DELETEALL;
     zones.markers.push_back(clear);
@@ -312,15 +321,16 @@ struct BagRecorder::Impl {
       if (!zone.polygon.empty()) m.points.push_back(point(zone.polygon.front().x(), zone.polygon.front().y()));
       zones.markers.push_back(std::move(m));
     }
-    put(topics::kZones, t, zones, true);
+    put(topics::kZones, zones_published, zones, true);
   }
 
   void write_footprints(double t, const sim::Sandtray& tray) {
     msg::MarkerArray footprints;  // FootprintsPublisher: one closed polygon per item, in the item's frame
+    const double published = clocks.publish("footprints", t);
     int marker_id = 0;
     for (const auto& [name, polygon] : tray.published_footprints()) {
       msg::Marker m;
-      m.header.stamp = ros_time(t);
+      m.header.stamp = ros_time(published);
       m.header.frame_id = ros_string("/" + name);
       m.ns = ros_string(name);
       m.id = marker_id++;
@@ -334,33 +344,67 @@ struct BagRecorder::Impl {
       if (!polygon.empty()) m.points.push_back(point(polygon.front().x(), polygon.front().y()));
       footprints.markers.push_back(std::move(m));
     }
-    put(topics::kFootprints, t, footprints, true);
+    put(topics::kFootprints, published, footprints, true);
   }
 
   void write_robot(double t, const runner::RobotSnapshot& robot) {
     msg::JointState joints;
-    joints.header.stamp = ros_time(t);
+    const double published = clocks.publish("naoqi_driver/joint_states", t);
+    joints.header.stamp = ros_time(published);
     for (const auto& name : robot.joint_names) joints.name.push_back(ros_string(name));
     joints.position.assign(robot.positions.begin(), robot.positions.end());
     joints.velocity.assign(robot.velocities.begin(), robot.velocities.end());
     joints.effort.assign(robot.efforts.begin(), robot.efforts.end());
-    put(topics::kJointStates, t, joints);
+    put(topics::kJointStates, published, joints);
     if (nao_links) {  // robot_state_publisher: the URDF links from the joint states, at the /tf rate
+      const double links_published = clocks.publish("robot_state_publisher", t);
       msg::TFMessage links;
       for (const auto& link : nao_links->compute(robot.joint_names, robot.positions)) {
-        links.transforms.push_back(transform(joints.header.stamp, link.parent, link.child,
+        links.transforms.push_back(transform(ros_time(links_published), link.parent, link.child,
                                              link.parent_T_child.translation(),
                                              Eigen::Quaterniond(link.parent_T_child.rotation())));
       }
-      put(topics::kTf, t, links);
+      put(topics::kTf, links_published, links);
     }
     if (robot.finger) {
       msg::PoseStamped pose;
-      pose.header.stamp = ros_time(t);
+      const double pose_published = clocks.publish("move_sandbox_items", t);
+      pose.header.stamp = ros_time(pose_published);
       pose.header.frame_id = ros_string("sandtray");
       pose.pose.position = point(robot.finger->x(), robot.finger->y());
       pose.pose.orientation.w = 1.0;
-      put(topics::kPoses, t, pose);
+      put(topics::kPoses, pose_published, pose);
+    }
+  }
+
+  /// Every utterance of the tick becomes sound in both microphones; the MP3 frames completed so far are written.
+  void write_audio(double t, const runner::EpisodeSnapshot& s, bool last = false) {
+    for (const auto& e : s.new_events) {
+      const bool child = e.source.rfind("child.", 0) == 0 && e.type == "speech";
+      const bool adult = (e.source == "robot" || e.source == "experimenter") && e.type == "say";
+      if (!child && !adult) continue;
+      Utterance u;
+      u.start_s = e.t;
+      u.duration_s = e.data.value("duration_s", 0.0);
+      u.syllables = e.data.value("syllables", std::max(1, static_cast<int>(std::lround(kAdultSyllablesPerS * u.duration_s))));
+      u.seed = splitmix64(seed ^ fnv1a64(e.source) ^ ++utterances);
+      u.pitch_hz = e.source == "robot" ? kRobotPitchHz : kExperimenterPitchHz;
+      u.mouth = e.source == "robot" ? kRobotMouth : kExperimenterMouth;
+      for (const auto& c : s.children) {
+        if (child && "child." + c.seat == e.source) {
+          u.pitch_hz = child_pitch_hz(c.age_years);
+          u.mouth = c.head;
+        }
+      }
+      const auto voice = babble(u);
+      for (auto& [topic, mic] : microphones) mic->add(u, voice);
+    }
+    for (auto& [topic, mic] : microphones) {
+      for (auto& [captured, bytes] : last ? mic->finish() : mic->advance(t)) {
+        msg::AudioData chunk;
+        chunk.data.assign(bytes.begin(), bytes.end());
+        put(topic, clocks.publish(topic, captured, kCameraMaxPhaseS), chunk);
+      }
     }
   }
 
@@ -421,6 +465,7 @@ void BagRecorder::begin(const runner::EpisodeInfo& info) {
   auto& d = *impl_;
   d.id = info.id;
   d.seed = info.seed;
+  d.clocks = PublisherClocks(info.seed);
   if (info.scenario != nullptr) {
     d.condition = info.scenario->condition;
     d.scenario_name = info.scenario->name;
@@ -432,13 +477,25 @@ void BagRecorder::begin(const runner::EpisodeInfo& info) {
     throw InputError(fmt::format("cannot create the session folder '{}': {}", d.paths.dir.string(), error.message()),
                      "record", "a writable run folder (--out)");
   }
-  for (const auto& stale : {d.paths.bag, d.paths.active_bag, d.paths.annotations}) std::filesystem::remove(stale, error);
+  for (const auto& stale : {d.paths.bag, d.paths.active_bag, d.paths.annotations, d.paths.bag_yaml}) {
+    std::filesystem::remove(stale, error);
+  }
   try {
     d.write_experiment(nullptr, false);
     d.bag.open(d.paths.active_bag.string(), rosbag::bagmode::Write);
   } catch (const std::exception& e) {
     throw InputError(fmt::format("cannot write the session folder '{}': {}", d.paths.dir.string(), e.what()),
                      "record", "a writable run folder (--out)");
+  }
+  std::filesystem::create_directories(d.paths.dir / "audio");
+  for (const char* camera : {"camera_purple", "camera_yellow"}) {  // the SR300s' microphones (audio_capture)
+    const auto link = std::find_if(std::begin(kCameraLinks), std::end(kCameraLinks), [&](const StaticLink& l) {
+      return std::string(l.frame) == std::string(camera) + "_link";
+    });
+    d.microphones.emplace_back(std::string(camera) + "/audio",
+                               std::make_unique<MicrophoneStream>(link->xyz, d.paths.dir / "audio" /
+                                                                                 fmt::format("freeplay_{}_audio", camera),
+                                                                  splitmix64(d.seed ^ fnv1a64(camera))));
   }
   d.bag.get().setChunkThreshold(static_cast<std::uint32_t>(d.settings.chunk_kb) * 1024U);
   d.bag.get().setCompression(compression_of(d.settings.compression));
@@ -464,6 +521,9 @@ void BagRecorder::observe(const runner::EpisodeSnapshot& snapshot) {
   }
   for (const auto& e : snapshot.new_events) d.write_event(t, e);
   d.write_tf(t, snapshot);
+  if (!d.poses) d.poses = std::make_unique<PoseRecorder>(d.paths.dir);
+  d.csv.observe(snapshot, d.poses->observe(snapshot));
+  d.write_audio(t, snapshot);
   if (snapshot.tray->background_version() != d.background_version) {
     d.background_version = snapshot.tray->background_version();
     d.write_background(t, *snapshot.tray);
@@ -480,7 +540,9 @@ void BagRecorder::write(const stage::FramePack& frame) {
   auto& d = *impl_;
   if (!d.open) return;
   const auto names = camera_topics(frame.camera);
-  const double t = frame.stamp;
+  // The camera driver stamps each stream when it publishes it: colour and depth each with their own phase.
+  const double t = d.clocks.publish(frame.camera + "/rgb", frame.stamp, kCameraMaxPhaseS);
+  const double t_depth = d.clocks.publish(frame.camera + "/depth", frame.stamp, kCameraMaxPhaseS);
   const auto stamp = ros_time(t);
   const Eigen::Quaterniond q(frame.sandtray_T_camera_optical.rotation());
   const Eigen::Vector3d xyz = frame.sandtray_T_camera_optical.translation();
@@ -508,8 +570,9 @@ void BagRecorder::write(const stage::FramePack& frame) {
   }
   const auto K = frame.K;
   const auto K_depth = frame.K_depth.width > 0 ? frame.K_depth : frame.K;
-  d.pending.push_back({cached.images, [&d, names, t, K, K_depth](const EncodedImages* images) {
+  d.pending.push_back({cached.images, [&d, names, t, t_depth, K, K_depth](const EncodedImages* images) {
                          const auto header_stamp = ros_time(t);
+                         const auto depth_stamp = ros_time(t_depth);
                          if (!images->jpeg.empty()) {
                            msg::CompressedImage image;
                            image.header.stamp = header_stamp;
@@ -521,12 +584,12 @@ void BagRecorder::write(const stage::FramePack& frame) {
                          }
                          if (!images->depth.empty()) {
                            msg::CompressedImage depth;
-                           depth.header.stamp = header_stamp;
+                           depth.header.stamp = depth_stamp;
                            depth.header.frame_id = ros_string(names.depth_frame);
                            depth.format = ros_string("16UC1; compressedDepth");
                            depth.data.assign(images->depth.begin(), images->depth.end());
-                           d.write_now(names.depth_image, t, depth);
-                           d.write_now(names.depth_info, t, camera_info(K_depth, names.depth_frame, header_stamp));
+                           d.write_now(names.depth_image, t_depth, depth);
+                           d.write_now(names.depth_info, t_depth, camera_info(K_depth, names.depth_frame, depth_stamp));
                          }
                          ++d.stats.frames;
                        }});
@@ -555,6 +618,7 @@ void BagRecorder::end(runner::EpisodeResult& result) {
   msg::String annotations;
   annotations.data = ros_string(agents::to_pinsoro_yaml(result.annotations, 0.0, header));
   d.put(topics::kAnnotations, end_t, annotations, true);
+  d.write_audio(end_t, runner::EpisodeSnapshot{}, true);
   d.close_bag();
   const double base = ros_time(d.freeplay_start.value_or(0.0)).toSec();
   write_file_atomically(d.paths.annotations,
@@ -562,7 +626,13 @@ void BagRecorder::end(runner::EpisodeResult& result) {
                                                 "Annotations made by freeplay-sim (synthetic ground truth; ROS time)"));
   const auto children = result.record.is_object() ? result.record.value("children", nlohmann::json::object())
                                                   : nlohmann::json::object();
-  d.write_experiment(&children, true);
+  d.write_experiment(&children, true, &result.annotations);
+  write_file_atomically(d.paths.bag_yaml, describe_bag_yaml(d.paths.bag, "freeplay.bag", d.settings.compression));
+  write_md5_file(d.paths.bag);
+  d.write_csv(children, result.annotations);
+  if (d.poses) {
+    if (const auto json = d.poses->finish()) write_md5_file(*json);
+  }
   result.record["recording"] = (std::filesystem::path("sessions") / d.id).generic_string();
 }
 
@@ -574,6 +644,7 @@ void BagRecorder::abort() {
     d.close_bag();
   } catch (const std::exception&) {  // the episode's own error is the one to report; the bag is closed
   }
+  if (d.poses) d.poses->discard();
   d.write_experiment(nullptr, false);
 }
 

@@ -19,13 +19,14 @@ std::vector<std::string> recordable_cameras() {
 CameraTopics camera_topics(std::string_view camera) {
   const std::string name(camera);
   if (name == "camera_purple" || name == "camera_yellow") {  // realsense driver + image_transport (dual_sr300.launch)
-    return {"/" + name + "/rgb/image_raw/compressed", "/" + name + "/rgb/camera_info", name + "_rgb_optical_frame",
-            "rgb8; jpeg compressed bgr8", "/" + name + "/depth/image_raw/compressedDepth",
-            "/" + name + "/depth/camera_info", name + "_depth_optical_frame"};
+    // Relative names, as the real bags store them (free-play-sandbox.md §4.1).
+    return {name + "/rgb/image_raw/compressed", name + "/rgb/camera_info", name + "_rgb_optical_frame",
+            "rgb8; jpeg compressed bgr8", name + "/depth/image_raw/compressedDepth", name + "/depth/camera_info",
+            name + "_depth_optical_frame"};
   }
   if (name == "env_camera") {  // kinect2_bridge, base_name env_camera, qhd stream
-    return {"/env_camera/qhd/image_color/compressed", "/env_camera/qhd/camera_info", "env_camera_rgb_optical_frame",
-            "bgr8; jpeg compressed bgr8", "/env_camera/sd/image_depth/compressedDepth", "/env_camera/sd/camera_info",
+    return {"env_camera/qhd/image_color/compressed", "env_camera/qhd/camera_info", "env_camera_rgb_optical_frame",
+            "bgr8; jpeg compressed bgr8", "env_camera/sd/image_depth/compressedDepth", "env_camera/sd/camera_info",
             "env_camera_ir_optical_frame"};
   }
   if (name == "CameraTop" || name == "CameraBottom") {  // naoqi_driver's front / bottom cameras

@@ -12,6 +12,7 @@
 #include "freeplay/core/error.hpp"
 #include "freeplay/core/yaml_schema.hpp"
 #include "freeplay/recording/bag_recorder.hpp"
+#include "freeplay/recording/publishers.hpp"
 #include "freeplay/recording/ros_messages.hpp"
 #include "freeplay/sim/screen.hpp"
 
@@ -68,8 +69,8 @@ RecordedChildren read_recorded_children(const std::filesystem::path& session) {
   std::vector<Event> child_events;
   std::optional<double> freeplay_start;
   std::optional<double> duration;
-  std::map<double, std::map<int, Vec2>> touches;                // snapshot stamp → finger → position
-  std::map<double, std::map<std::string, HeadRay>> heads;        // snapshot stamp → seat → head ray
+  std::map<long, std::map<int, Vec2>> touches;          // snapshot's tick (publication_tick) → finger → position
+  std::map<long, std::map<std::string, HeadRay>> heads;  // snapshot's tick → seat → head ray
   rosbag::View view(bag.get(), rosbag::TopicQuery(std::vector<std::string>{topics::kScenario, topics::kEpisode,
                                                                      topics::kEvents, topics::kTf}));
   for (const auto& m : view) try {
@@ -94,7 +95,7 @@ RecordedChildren read_recorded_children(const std::filesystem::path& session) {
       const auto tf = m.instantiate<msg::TFMessage>();  // keeps the message alive
       for (const auto& x : tf->transforms) {
         const auto child = std_string(x.child_frame_id);
-        const double stamp = sandtray_time(x.header.stamp);
+        const long stamp = publication_tick(sandtray_time(x.header.stamp));
         const Eigen::Vector3d xyz(x.transform.translation.x, x.transform.translation.y, x.transform.translation.z);
         if (child.rfind("touch", 0) == 0 && std_string(x.header.frame_id) == "sandtray") {
           touches[stamp][std::stoi(child.substr(5))] = xyz.head<2>();
@@ -130,11 +131,12 @@ RecordedChildren read_recorded_children(const std::filesystem::path& session) {
 
   const double t0 = *freeplay_start;
   const auto tick_of = [&](double t) { return std::lround((t - t0) / kTickS); };
-  // Snapshots are stamped after the tick's step: the state after tick k carries stamp t0 + (k + 1) × 0.1.
+  // Snapshots are stamped after the tick's step: the state after free-play tick k is about t0 + (k + 1) × 0.1.
+  const long first_tick = publication_tick(t0);
   std::map<long, std::map<int, Vec2>> touches_after;
-  for (auto& [stamp, fingers] : touches) touches_after[tick_of(stamp) - 1] = std::move(fingers);
+  for (auto& [tick, fingers] : touches) touches_after[tick - first_tick - 1] = std::move(fingers);
   std::map<long, std::map<std::string, HeadRay>> heads_after;
-  for (auto& [stamp, seats] : heads) heads_after[tick_of(stamp) - 1] = std::move(seats);
+  for (auto& [tick, seats] : heads) heads_after[tick - first_tick - 1] = std::move(seats);
   std::map<std::pair<std::string, long>, std::vector<const Event*>> events_at;
   for (const auto& e : child_events) events_at[{e.source.substr(6), tick_of(e.t)}].push_back(&e);
 

@@ -13,6 +13,7 @@
 #include "freeplay/core/error.hpp"
 #include "freeplay/core/statistics.hpp"
 #include "freeplay/recording/bag_recorder.hpp"
+#include "freeplay/recording/publishers.hpp"
 #include "freeplay/recording/ros_messages.hpp"
 #include "freeplay/runner/summary.hpp"
 #include "freeplay/sim/canvas.hpp"
@@ -28,7 +29,7 @@ constexpr double kTakenWindowS = 30.0;
 
 /// An item's position on the game's /tf at a tick; InputError when the recording lacks it.
 Vec2 item_position(const SessionRecording& rec, double tick, const std::string& item) {
-  const auto it = rec.item_positions.find(tick);
+  const auto it = rec.item_positions.find(publication_tick(tick));
   if (it == rec.item_positions.end() || !it->second.contains(item)) {
     throw InputError(fmt::format("no /tf pose of '{}' at t = {} s", item, tick), "/tf", "a complete recording");
   }
@@ -210,7 +211,7 @@ SessionRecording read_session(const std::filesystem::path& path) {
         const auto child = std_string(x.child_frame_id);
         if (child.rfind("touch", 0) == 0 || child.find('_') != std::string::npos) continue;
         if (std_string(x.header.frame_id) != "sandtray") continue;  // the Nao's links hang from base_link
-        out.item_positions[sandtray_time(x.header.stamp)][child] = Vec2(x.transform.translation.x, x.transform.translation.y);
+        out.item_positions[publication_tick(sandtray_time(x.header.stamp))][child] = Vec2(x.transform.translation.x, x.transform.translation.y);
       }
     } else if (topic == topics::kZones) {
       const auto markers = m.instantiate<msg::MarkerArray>();
@@ -223,14 +224,14 @@ SessionRecording read_session(const std::filesystem::path& path) {
         z.area_m2 = std::abs(signed_area(z.polygon));
         zones.push_back(std::move(z));
       }
-      out.zones.emplace_back(t, std::move(zones));
+      out.zones.emplace_back(tick_time(publication_tick(t)), std::move(zones));
     } else if (topic == topics::kAnnotations) {
       out.annotations_yaml = std_string(m.instantiate<msg::String>()->data);
     } else if (topic == topics::kInteractionEvents) {
       out.interaction_events.push_back(std_string(m.instantiate<msg::String>()->data));
     } else if (topic == topics::kBackground) {
       const auto image = m.instantiate<msg::CompressedImage>();
-      out.backgrounds.emplace_back(t, std::vector<std::uint8_t>(image->data.begin(), image->data.end()));
+      out.backgrounds.emplace_back(tick_time(publication_tick(t)), std::vector<std::uint8_t>(image->data.begin(), image->data.end()));
     }
   }
   return out;

@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
+#include <cmath>
+
 namespace freeplay::recording {
 
 namespace {
@@ -19,6 +21,23 @@ void participant(YAML::Emitter& out, const char* key, const Participant& p) {
 
 }  // namespace
 
+std::optional<int> social_engagement_likert(const agents::SessionAnnotations& annotations) {
+  double sum = 0.0;
+  int children = 0;
+  for (const auto* timeline : {annotations.purple ? &*annotations.purple : nullptr,
+                               annotations.yellow ? &*annotations.yellow : nullptr}) {
+    if (timeline == nullptr || timeline->empty()) continue;
+    const auto shares = agents::label_shares(*timeline, agents::Axis::SocialEngagement);
+    for (std::size_t i = 0; i < agents::label_count(agents::Axis::SocialEngagement); ++i) {
+      const auto name = agents::label_name(agents::Axis::SocialEngagement, i);
+      if (name == "associative" || name == "cooperative") sum += shares[i];
+    }
+    ++children;
+  }
+  if (children == 0) return std::nullopt;
+  return 1 + static_cast<int>(std::lround(4.0 * sum / children));
+}
+
 std::string to_experiment_yaml(const ExperimentInfo& info) {
   YAML::Emitter out;
   out << YAML::BeginMap;
@@ -32,6 +51,10 @@ std::string to_experiment_yaml(const ExperimentInfo& info) {
   out << YAML::Key << "notes" << YAML::Value << YAML::BeginMap;
   for (const auto& [key, text] : info.notes) out << YAML::Key << key << YAML::Value << text;
   out << YAML::EndMap;
+  if (info.social_engagement) {
+    out << YAML::Key << "extras" << YAML::Value << YAML::BeginMap;
+    out << YAML::Key << "social-engagement" << YAML::Value << *info.social_engagement << YAML::EndMap;
+  }
   if (!info.issues.empty()) out << YAML::Key << "issues" << YAML::Value << info.issues;
   out << YAML::EndMap;
   return fmt::format("# {}\n{}\n", info.header, out.c_str());

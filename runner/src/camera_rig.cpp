@@ -104,8 +104,8 @@ StageMirror::StageMirror(std::shared_ptr<const stage::StageModel> model) : stage
   stage_.update_kinematics();
 }
 
-void StageMirror::pose(const EpisodeSnapshot& snapshot, bool force_screen) {
-  update_screen(snapshot, force_screen);
+void StageMirror::pose(const EpisodeSnapshot& snapshot, bool force_screen, bool screen) {
+  if (screen) update_screen(snapshot, force_screen);
   if (snapshot.robot != nullptr && nao_ != nullptr) pose_robot(*snapshot.robot);
   for (const auto& child : snapshot.children) pose_child(child);
   stage_.update_kinematics();

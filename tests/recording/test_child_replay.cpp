@@ -7,6 +7,7 @@
 #include "freeplay/core/error.hpp"
 #include "freeplay/recording/bag_recorder.hpp"
 #include "freeplay/recording/child_replay.hpp"
+#include "freeplay/recording/publishers.hpp"
 #include "freeplay/recording/replay.hpp"
 #include "freeplay/recording/robot_links.hpp"
 #include "freeplay/recording/ros_messages.hpp"
@@ -151,20 +152,24 @@ TEST(RobotLinks, LinkFramesEqualTheStageBodiesForTheRecordedJoints) {
   const auto& s = child_robot();
   Bag bag;
   open_session_bag(s.dir, bag);
-  // A joint state while the arm streams a move (the last /poses stamp) and, at its stamp, the Nao's links.
-  ros::Time stamp;
-  for (const auto& m : rosbag::View(bag.get(), rosbag::TopicQuery(topics::kPoses))) stamp = m.getTime();
-  ASSERT_FALSE(stamp.isZero()) << "the recorded robot should have moved an item";
+  // A joint state while the arm streams a move (the tick of the last /poses message) and the Nao's links of that
+  // tick (each publisher sends it at its own phase after the tick).
+  ros::Time last_pose;
+  for (const auto& m : rosbag::View(bag.get(), rosbag::TopicQuery(topics::kPoses))) last_pose = m.getTime();
+  ASSERT_FALSE(last_pose.isZero()) << "the recorded robot should have moved an item";
+  const double tick_t = tick_time(publication_tick(sandtray_time(last_pose)));
+  const ros::Time stamp = ros_time(tick_t);
+  const ros::Time until = ros_time(tick_t + kMaxPublishDelayS);
   std::vector<std::string> names;
   std::vector<double> positions;
-  for (const auto& m : rosbag::View(bag.get(), rosbag::TopicQuery(topics::kJointStates), stamp, stamp)) {
+  for (const auto& m : rosbag::View(bag.get(), rosbag::TopicQuery(topics::kJointStates), stamp, until)) {
     const auto js = m.instantiate<msg::JointState>();
     for (const auto& n : js->name) names.push_back(std_string(n));
     positions.assign(js->position.begin(), js->position.end());
   }
   ASSERT_EQ(names.size(), 26U);
   std::map<std::string, std::pair<std::string, Eigen::Isometry3d>> links;  // child → (parent, parent_T_child)
-  for (const auto& m : rosbag::View(bag.get(), rosbag::TopicQuery(topics::kTf), stamp, stamp)) {
+  for (const auto& m : rosbag::View(bag.get(), rosbag::TopicQuery(topics::kTf), stamp, until)) {
     const auto tf = m.instantiate<msg::TFMessage>();  // keeps the message alive
       for (const auto& x : tf->transforms) {
       Eigen::Isometry3d T = Eigen::Isometry3d::Identity();

@@ -21,6 +21,7 @@ struct SessionPaths {
   std::filesystem::path active_bag;   ///< `freeplay.bag.active` while recording (left behind by a kill)
   std::filesystem::path experiment;   ///< `experiment.yaml` (PInSoRo metadata)
   std::filesystem::path annotations;  ///< `freeplay.annotations.freeplay-sim.yaml` (ground truth, bag time base)
+  std::filesystem::path bag_yaml;     ///< `freeplay.bag.yaml` (rosbag info --yaml of the closed bag)
 };
 /// The files of the session folder `dir`.
 SessionPaths session_paths(const std::filesystem::path& dir);

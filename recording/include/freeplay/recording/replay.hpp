@@ -35,11 +35,11 @@ struct SessionRecording {
   double start_s = 0.0;                                        ///< first message (sandtray time)
   double end_s = 0.0;                                          ///< last message (sandtray time)
   std::vector<RecordedEvent> events;                           ///< /freeplay/events in order
-  std::map<double, std::map<std::string, Vec2>> item_positions;  ///< game /tf per tick: item → position
-  std::vector<std::pair<double, std::vector<RecordedZone>>> zones;  ///< /zones messages in time order
+  std::map<long, std::map<std::string, Vec2>> item_positions;  ///< game /tf per tick index (publication_tick): item → position
+  std::vector<std::pair<double, std::vector<RecordedZone>>> zones;  ///< /zones messages in time order (their tick's time)
   std::string annotations_yaml;                                ///< /freeplay/annotations (empty when interrupted)
   std::vector<std::string> interaction_events;                 ///< /sandtray/interaction_events in order
-  std::vector<std::pair<double, std::vector<std::uint8_t>>> backgrounds;  ///< background PNGs in time order
+  std::vector<std::pair<double, std::vector<std::uint8_t>>> backgrounds;  ///< background PNGs in time order (their tick's time)
 };
 
 /// Reads `path` (a session folder or a bag file; `freeplay.bag`, else `freeplay.bag.active`); InputError when no

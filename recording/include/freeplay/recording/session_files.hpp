@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "freeplay/agents/annotations.hpp"
+
 namespace freeplay::recording {
 
 /// One child of a session as `experiment.yaml` describes it.
@@ -27,7 +29,12 @@ struct ExperimentInfo {
   std::map<double, std::string> markers;     ///< seconds since free play started → interesting|issue|note|screenshot
   std::map<std::string, std::string> notes;  ///< `general` and `<seconds>` → text
   std::vector<std::string> issues;           ///< problems (an interrupted recording says so here)
+  std::optional<int> social_engagement;      ///< `extras: {social-engagement: 1..5}` (end-of-session Likert)
 };
+
+/// The end-of-session social-engagement Likert (1..5) of a session's annotations: 1 + 4 × the children's mean share
+/// of labelled time in the social labels `associative` and `cooperative`, rounded (nullopt without annotations).
+std::optional<int> social_engagement_likert(const agents::SessionAnnotations& annotations);
 
 /// `experiment.yaml` text in the PInSoRo layout.
 std::string to_experiment_yaml(const ExperimentInfo& info);

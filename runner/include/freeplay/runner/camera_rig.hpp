@@ -34,8 +34,9 @@ class StageMirror {
   explicit StageMirror(std::shared_ptr<const stage::StageModel> model);
 
   /// Copies `snapshot` onto the stage: NAO joints, avatars' gaze and right hand, and the screen picture when the
-  /// game changed and `kScreenPeriodS` has passed since the last update (or at once with `force_screen`).
-  void pose(const EpisodeSnapshot& snapshot, bool force_screen = false);
+  /// game changed and `kScreenPeriodS` has passed since the last update (or at once with `force_screen`; never
+  /// without `screen`, for users that only need the bodies' poses).
+  void pose(const EpisodeSnapshot& snapshot, bool force_screen = false, bool screen = true);
 
   /// The posed stage (kinematics up to date after `pose`).
   const stage::Stage& stage() const { return stage_; }
