@@ -1,4 +1,4 @@
-#include "graph_messages.hpp"
+#include "freeplay/ros/graph_messages.hpp"
 
 #include <fmt/format.h>
 

@@ -15,7 +15,7 @@
 #include "freeplay/policies/play_policy.hpp"
 #include "freeplay/ros/graph.hpp"
 #include "freeplay/runner/episode.hpp"
-#include "graph_messages.hpp"
+#include "freeplay/ros/graph_messages.hpp"
 
 namespace freeplay::ros_live {
 

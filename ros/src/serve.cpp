@@ -17,7 +17,7 @@
 #include "freeplay/runner/sandtray_world.hpp"
 #include "freeplay/runner/scenario.hpp"
 #include "freeplay/sim/screen.hpp"
-#include "graph_messages.hpp"
+#include "freeplay/ros/graph_messages.hpp"
 
 namespace freeplay::ros_live {
 
@@ -33,13 +33,16 @@ struct Live {
   double stamp(double t) const { return stamp_origin + t; }
 };
 
+class GraphRobot;
+void serve_plans(GraphRobot& robot, const sim::Sandtray& tray);
+
 /// Publishes every tick of the episode on the graph, paced to the wall clock.
 class LivePublisher final : public runner::EpisodeObserver {
  public:
   LivePublisher(Live& live, double rate, bool sim_robot) : live_(live), rate_(rate), sim_robot_(sim_robot) {}
 
   void observe(const runner::EpisodeSnapshot& s) override {
-    pace(s.t);
+    const auto due = pace(s.t);
     auto& g = *live_.graph;
     const double stamp = live_.stamp(s.t);
     g.clock(stamp);
@@ -48,6 +51,7 @@ class LivePublisher final : public runner::EpisodeObserver {
     frames.insert(frames.end(), links.begin(), links.end());
     if (reach_) frames.push_back(arm_reach_frame(*reach_));
     g.tf(stamp, frames);
+    lateness_ms_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - due).count());
     if (!footprints_sent_) {
       g.footprints(stamp, footprint_markers(*s.tray));
       footprints_sent_ = true;
@@ -60,6 +64,7 @@ class LivePublisher final : public runner::EpisodeObserver {
     }
     if (tick_++ % kMapEveryTicks == 0) g.map(stamp, occupancy_map(*s.tray));
     for (const auto& e : s.new_events) publish_event(e);
+    if (robot_ != nullptr) serve_plans(*robot_, *s.tray);
     if (s.robot != nullptr) {
       g.joint_states(stamp, {s.robot->joint_names, s.robot->positions, s.robot->velocities, s.robot->efforts});
       if (sim_robot_ && s.robot->finger) {  // our in-process move_sandbox_items streaming /poses
@@ -80,6 +85,9 @@ class LivePublisher final : public runner::EpisodeObserver {
     }
   }
 
+  /// Answers `plan_motion` through `robot` at every tick (`--robot external`).
+  void set_planner(GraphRobot* robot) { robot_ = robot; }
+
   /// Sets the arm-reach disc published as the `arm_reach` frame.
   void set_reach(const runner::ReachDisc& reach) { reach_ = reach; }
 
@@ -97,7 +105,8 @@ class LivePublisher final : public runner::EpisodeObserver {
   }
 
  private:
-  void pace(double t) {
+  // Sleeps until tick `t` is due on the wall clock; returns when it was due.
+  std::chrono::steady_clock::time_point pace(double t) {
     using clock = std::chrono::steady_clock;
     if (!start_) {
       start_ = clock::now();
@@ -105,7 +114,7 @@ class LivePublisher final : public runner::EpisodeObserver {
     }
     const auto due = *start_ + std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>((t - t0_) / rate_));
     std::this_thread::sleep_until(due);
-    lateness_ms_.push_back(std::chrono::duration<double, std::milli>(clock::now() - due).count());
+    return due;
   }
 
   void publish_event(const Event& e) {
@@ -123,6 +132,7 @@ class LivePublisher final : public runner::EpisodeObserver {
   double rate_;
   bool sim_robot_;
   std::optional<runner::ReachDisc> reach_;
+  GraphRobot* robot_ = nullptr;
   std::optional<std::chrono::steady_clock::time_point> start_;
   double t0_ = 0.0;
   bool footprints_sent_ = false;
@@ -147,7 +157,6 @@ class GraphRobot final : public runner::RobotActionSource {
     const auto world = runner::sandtray_move_world(tray);
     std::vector<Vec2> out;
     for (const auto& p : g.take_poses()) out.emplace_back(p.x, p.y);
-    for (const auto& request : g.take_plan_requests()) answer(request, tray, world);
     if (auto goal = g.take_goal()) start(*goal, tray, world);
     if (executor_->status() != planning::MoveStatus::Running) return out;
     if (g.cancel_requested(goal_id_)) executor_->cancel();
@@ -162,6 +171,14 @@ class GraphRobot final : public runner::RobotActionSource {
     if (executor_->status() != planning::MoveStatus::Running) finish();
     (void)t;
     return out;
+  }
+
+  /// Answers the waiting `plan_motion` requests on the game as it is now (map_and_plan serves in every stage).
+  void serve_plans(const sim::Sandtray& tray) {
+    const auto requests = live_.graph->take_plan_requests();
+    if (requests.empty()) return;
+    const auto world = runner::sandtray_move_world(tray);
+    for (const auto& request : requests) answer(request, tray, world);
   }
 
  private:
@@ -218,6 +235,7 @@ class GraphRobot final : public runner::RobotActionSource {
       plan.obstacles = world.footprints();
       plan.time_budget_s = scenario_.planner_budget_s;
       const auto result = planning::plan_motion(scenario_.planner, plan, rng_);
+      if (!result.ok) spdlog::warn("plan_motion: no path for {}: {}", item, result.message);
       for (const auto& p : result.path) path.push_back({p.position.x(), p.position.y()});
     } else {
       spdlog::warn("plan_motion: no path for frame '{}' to ({}, {}): not an item or not a finite point", request.frame,
@@ -233,6 +251,8 @@ class GraphRobot final : public runner::RobotActionSource {
   std::unique_ptr<planning::MoveExecutor> executor_;
   std::uint64_t goal_id_ = 0;
 };
+
+void serve_plans(GraphRobot& robot, const sim::Sandtray& tray) { robot.serve_plans(tray); }
 
 /// Hands every tick to the publisher (the episode owns its observers; the publisher outlives the episode).
 class PublisherRef final : public runner::EpisodeObserver {
@@ -261,6 +281,7 @@ runner::EpisodeResult serve(const runner::Scenario& scenario, std::uint64_t seed
   std::unique_ptr<GraphRobot> robot;
   if (options.external_robot && child_robot) {
     robot = std::make_unique<GraphRobot>(live, scenario, publisher, SeedSequence(seed).seed_for("serve.planner"));
+    publisher.set_planner(robot.get());
   }
   runner::EpisodeObservers observers;
   observers.push_back(std::make_unique<PublisherRef>(publisher));

@@ -103,7 +103,7 @@ def rospy_client():
 
 
 def item_positions(rospy, timeout=10.0):
-    """The latest position of every item on /tf (waits until all ten arrived)."""
+    """The latest (x, y, yaw) of every item on /tf (waits until all ten arrived)."""
     from tf2_msgs.msg import TFMessage
     seen = {}
     deadline = time.monotonic() + timeout
@@ -112,8 +112,9 @@ def item_positions(rospy, timeout=10.0):
         msg = rospy.wait_for_message("/tf", TFMessage, timeout=timeout)
         for t in msg.transforms:
             if t.header.frame_id in ("sandtray", "/sandtray"):
+                q = t.transform.rotation
                 seen[t.child_frame_id] = (t.transform.translation.x, t.transform.translation.y,
-                                          t.transform.translation.z)
+                                          math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z)))
     return seen
 
 
@@ -188,12 +189,18 @@ def case_client(g):
               min(max(start[1] + (0.04 if start[1] < -0.17 else -0.04), -0.3), -0.03))
     rospy.wait_for_service("plan_motion", timeout=10)
     plan = rospy.ServiceProxy("plan_motion", PlaygroundPlan)
+    # map_and_plan's goal is in the moved item's frame: the screen centre, seen from the ball.
+    dx, dy, yaw = 0.3 - start[0], -0.17 - start[1], start[2]
     goal_pose = PoseStamped()
     goal_pose.header.frame_id = "/ball"
-    goal_pose.pose.position.x = 0.05
+    goal_pose.pose.position.x = math.cos(yaw) * dx + math.sin(yaw) * dy
+    goal_pose.pose.position.y = -math.sin(yaw) * dx + math.cos(yaw) * dy
     path = plan(goal_pose).path
-    check(len(path.poses) > 3 and path.header.frame_id == "/sandtray", "plan_motion returns a path in /sandtray")
+    check(len(path.poses) > 3 and path.header.frame_id == "/sandtray",
+          f"plan_motion returns a path in /sandtray: {len(path.poses)} poses, frame {path.header.frame_id!r}")
     check(abs(path.poses[1].header.stamp.to_sec() - 0.1) < 1e-6, "path poses stamped 0, 0.1, 0.2 … s")
+    last = path.poses[-1].pose.position
+    check(math.hypot(last.x - 0.3, last.y + 0.17) < 0.01, f"the path ends at the goal ({last.x}, {last.y})")
     client.send_goal(PlaygroundNavigationGoal(item="ball", goal=Point(target[0], target[1], 0)))
     state, text = wait_result(client, 60)
     check(state == GoalStatus.SUCCEEDED, f"move ball: state {state}, text '{text}'")
@@ -209,7 +216,10 @@ def case_client(g):
         state, text = wait_result(client, 20)
         check(state == GoalStatus.ABORTED and needle in text, f"bad goal {goal}: state {state}, text '{text}'")
     poses = rospy.Publisher("/poses", PoseStamped, queue_size=10)
-    time.sleep(1.0)  # let serve connect to our publisher
+    deadline = time.monotonic() + 10
+    while poses.get_num_connections() == 0:  # serve subscribes /poses
+        check(time.monotonic() < deadline, "serve did not connect to our /poses publisher")
+        time.sleep(0.1)
     bad = PoseStamped()
     bad.header.frame_id = "sandtray"
     bad.pose.position.x = float("nan")

@@ -41,6 +41,11 @@ constexpr double kPlanAnswerTimeoutS = 2.0;
 
 ros::Time stamp_of(double t) { return ros::Time(t); }
 
+// True for a message this node published: intra-process delivery carries no connection header.
+bool own(const std::string& publisher) {
+  return publisher == ros::this_node::getName() || publisher == "unknown_publisher";
+}
+
 visualization_msgs::Marker line_marker(const ros::Time& stamp, const Polyline& p) {
   visualization_msgs::Marker m;
   m.header.stamp = stamp;
@@ -105,14 +110,14 @@ struct SandtrayGraph::Impl {
     for (const char* name : kSignals) {
       const std::string topic = std::string("sandtray/signals/") + name;
       signal_out[name] = nh.advertise<std_msgs::Empty>(topic, 1);
-      subscribers.push_back(nh.subscribe<std_msgs::Empty>(
+      subscribers.push_back(subscribe_events<std_msgs::Empty>(
           topic, 10, [this, n = std::string(name)](const ros::MessageEvent<const std_msgs::Empty>& e) {
-            if (e.getPublisherName() == ros::this_node::getName()) return;
+            if (own(e.getPublisherName())) return;
             std::lock_guard lock(mutex);
             signals_in.push_back(n);
           }));
     }
-    subscribers.push_back(nh.subscribe<geometry_msgs::PoseStamped>(
+    subscribers.push_back(subscribe_events<geometry_msgs::PoseStamped>(
         "/poses", 10, [this](const ros::MessageEvent<const geometry_msgs::PoseStamped>& e) { on_pose(e); }));
     if (o.core_servers) {
       server = std::make_unique<NavigationServer>(
@@ -126,6 +131,15 @@ struct SandtrayGraph::Impl {
     spinner.start();
   }
 
+  // Subscribes with the sender's connection header (a plain message callback loses the caller id).
+  template <class M>
+  ros::Subscriber subscribe_events(const std::string& topic, std::uint32_t queue,
+                                   const boost::function<void(const ros::MessageEvent<const M>&)>& callback) {
+    ros::SubscribeOptions subscription;
+    subscription.template initByFullCallbackType<const ros::MessageEvent<const M>&>(topic, queue, callback);
+    return nh.subscribe(subscription);
+  }
+
   ~Impl() {
     spinner.stop();
     std::lock_guard lock(mutex);
@@ -134,7 +148,7 @@ struct SandtrayGraph::Impl {
   }
 
   void on_pose(const ros::MessageEvent<const geometry_msgs::PoseStamped>& e) {
-    if (e.getPublisherName() == ros::this_node::getName()) return;  // our own executor's stream
+    if (own(e.getPublisherName())) return;  // our own executor's stream
     const auto& msg = *e.getMessage();
     const auto& p = msg.pose.position;
     const std::string frame = msg.header.frame_id;
