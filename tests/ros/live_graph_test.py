@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Live ROS 1 graph checks of `freeplay serve` and `freeplay robot` against a real rosmaster.
 
-Usage: live_graph_test.py FREEPLAY SCENARIO CASE   (CASE: topics | client | robot)
+Usage: live_graph_test.py FREEPLAY SCENARIO CASE   (CASE: topics | client | robot | rate)
 
 Each case starts its own rosmaster on a free loopback port, the freeplay processes it needs, and a rospy client of
 ours (independent of the C++ code, with the freeplay_sandbox_msgs Python classes genpy generated at build time);
@@ -164,6 +164,13 @@ def case_topics(g):
     check(all(m.ns.startswith("sandbox_zone_") for m in zones.markers[1:]), "zones: ns sandbox_zone_<colour>")
     info = rospy.wait_for_message("/sandtray/background/camera_info", CameraInfo, timeout=10)
     check(abs(info.K[0] * 0.6 - info.width) < 1e-6, "camera_info K[0] = 1 / pixel2meter")
+    bag = os.path.join(g.dir, "live.bag")  # rosbag record on the live graph, read back by rosbag info
+    subprocess.run(["timeout", "-s", "INT", "4", "/usr/bin/rosbag", "record", "-O", bag, "/tf", "/footprints",
+                    "/zones", "/joint_states"], capture_output=True, timeout=30)
+    info_text = subprocess.run(["/usr/bin/rosbag", "info", bag], capture_output=True, text=True, timeout=30).stdout
+    for topic, kind in [("/tf", "tf2_msgs/TFMessage"), ("/footprints", "visualization_msgs/MarkerArray"),
+                        ("/zones", "visualization_msgs/MarkerArray"), ("/joint_states", "sensor_msgs/JointState")]:
+        check(topic in info_text and kind in info_text, f"rosbag record/info lacks {topic} [{kind}]:\n{info_text}")
     check(g.procs[1][1].poll() is None, "serve still runs")
 
 
@@ -232,6 +239,18 @@ def case_client(g):
     check(g.procs[1][1].poll() is None, "serve still runs after bad goals and malformed poses")
 
 
+def case_rate(g):
+    """`--rate 20` publishes /clock for use_sim_time, and it advances."""
+    g.serve("--rate", "20", "--set", "protocol.freeplay_cap_s=600")
+    rospy = rospy_client()
+    from rosgraph_msgs.msg import Clock
+    first = rospy.wait_for_message("/clock", Clock, timeout=30).clock.to_sec()
+    time.sleep(0.5)
+    later = rospy.wait_for_message("/clock", Clock, timeout=10).clock.to_sec()
+    check(later > first, f"/clock advances ({first} → {later})")
+    item_positions(rospy)
+
+
 def case_robot(g):
     """`freeplay serve --robot external` + `freeplay robot --policy asocial`: the robot moves items by fake touches."""
     g.serve("--robot", "external")
@@ -259,7 +278,7 @@ def case_robot(g):
 
 
 def main():
-    cases = {"topics": case_topics, "client": case_client, "robot": case_robot}
+    cases = {"topics": case_topics, "client": case_client, "robot": case_robot, "rate": case_rate}
     with Graph() as g:
         try:
             cases[CASE](g)
