@@ -91,6 +91,7 @@ class LivePublisher final : public runner::EpisodeObserver {
   /// Sets the arm-reach disc published as the `arm_reach` frame.
   void set_reach(const runner::ReachDisc& reach) { reach_ = reach; }
 
+  /// Lateness percentiles of the ticks published so far.
   ServeTiming timing() const {
     ServeTiming out;
     out.ticks = lateness_ms_.size();
@@ -150,7 +151,7 @@ class GraphRobot final : public runner::RobotActionSource {
   GraphRobot(Live& live, const runner::Scenario& scenario, LivePublisher& publisher, std::uint64_t seed)
       : live_(live), scenario_(scenario), publisher_(publisher), rng_(seed) {}
 
-  std::vector<Vec2> finger_poses(double t, const sim::Sandtray& tray, const runner::ReachDisc& reach) override {
+  std::vector<Vec2> finger_poses(double /*t*/, const sim::Sandtray& tray, const runner::ReachDisc& reach) override {
     auto& g = *live_.graph;
     publisher_.set_reach(reach);
     if (!executor_) executor_ = runner::make_move_executor(scenario_, reach.centre, reach.radius);
@@ -169,7 +170,6 @@ class GraphRobot final : public runner::RobotActionSource {
     outputs.feedback = [&](int percentage) { g.goal_feedback(goal_id_, percentage); };
     if (executor_->status() == planning::MoveStatus::Running) executor_->step(0.1, world, outputs);
     if (executor_->status() != planning::MoveStatus::Running) finish();
-    (void)t;
     return out;
   }
 
