@@ -252,8 +252,9 @@ def case_rate(g):
 
 
 def case_robot(g):
-    """`freeplay serve --robot external` + `freeplay robot --policy asocial`: the robot moves items by fake touches."""
-    g.serve("--robot", "external")
+    """`freeplay serve --robot external` + `freeplay robot --policy asocial`: the robot moves items by fake touches,
+    and the served episode's metrics count the robot's moves as an in-process episode does."""
+    serve = g.serve("--robot", "external", "--set", "protocol.freeplay_cap_s=45")
     rospy = rospy_client()
     from std_msgs.msg import String
     releases = []
@@ -274,7 +275,17 @@ def case_robot(g):
     moved = [i for i in set(released) if math.dist(start[i][:2], end[i][:2]) > 0.02]
     print("released by the robot:", released, "moved > 2 cm:", moved)
     check(moved, "an item the robot dragged moved on /tf")
-    check(g.procs[1][1].poll() is None, "serve still runs")
+    try:
+        serve.wait(timeout=60)
+    except subprocess.TimeoutExpired:
+        raise AssertionError("freeplay serve did not end after its 45 s of free play")
+    check(serve.returncode == 0, f"freeplay serve failed:\n{g.log('serve')}")
+    import json
+    summary = json.loads([line for line in g.log("serve").splitlines() if line.startswith("{")][-1])
+    metrics = summary["metrics"]
+    print("serve metrics: robot_item_moves_per_min", metrics["robot_item_moves_per_min"],
+          "child_item_moves_per_min", metrics["child_item_moves_per_min"], "timing", summary["timing"])
+    check(not summary["aborted"] and metrics["robot_item_moves_per_min"] > 0, "the episode counted the robot's moves")
 
 
 def main():
