@@ -79,6 +79,8 @@ class LivePublisher final : public runner::EpisodeObserver {
       for (const auto& p : g.take_poses()) {  // as the game: poses are ignored while the sandbox is hidden
         spdlog::debug("/poses from {} ignored outside free play", p.publisher);
       }
+      g.take_look_at();  // the external robot acts in free play only
+      g.take_point_at();
     }
     for (const auto& name : g.take_signals()) {
       spdlog::info("received sandtray/signals/{} (the served protocol drives the game's stages; not applied)", name);
@@ -151,20 +153,22 @@ class GraphRobot final : public runner::RobotActionSource {
   GraphRobot(Live& live, const runner::Scenario& scenario, LivePublisher& publisher, std::uint64_t seed)
       : live_(live), scenario_(scenario), publisher_(publisher), rng_(seed) {}
 
-  std::vector<Vec2> finger_poses(double /*t*/, const sim::Sandtray& tray, const runner::ReachDisc& reach) override {
+  runner::RobotCommands commands(double /*t*/, const sim::Sandtray& tray, const runner::ReachDisc& reach) override {
     auto& g = *live_.graph;
+    runner::RobotCommands out;
+    if (const auto look = g.take_look_at()) out.look_at = Eigen::Vector3d((*look)[0], (*look)[1], (*look)[2]);
+    if (const auto point = g.take_point_at()) out.point_at = Vec2((*point)[0], (*point)[1]);
     publisher_.set_reach(reach);
     if (!executor_) executor_ = runner::make_move_executor(scenario_, reach.centre, reach.radius);
     const auto world = runner::sandtray_move_world(tray);
-    std::vector<Vec2> out;
-    for (const auto& p : g.take_poses()) out.emplace_back(p.x, p.y);
+    for (const auto& p : g.take_poses()) out.finger.emplace_back(p.x, p.y);
     if (auto goal = g.take_goal()) start(*goal, tray, world);
     if (executor_->status() != planning::MoveStatus::Running) return out;
     if (g.cancel_requested(goal_id_)) executor_->cancel();
     const double stamp = live_.stamp(tray.time());
     planning::MoveOutputs outputs;
     outputs.finger = [&](const planning::TimedPose& pose) {
-      out.push_back(pose.position);
+      out.finger.push_back(pose.position);
       g.finger(stamp, pose.position.x(), pose.position.y());
     };
     outputs.feedback = [&](int percentage) { g.goal_feedback(goal_id_, percentage); };

@@ -709,15 +709,27 @@ class Episode {
     rest_when_idle(t);
   }
 
-  // ---- external robot (RobotActionSource): its finger poses reach the game as `/poses` do -------------------
+  // ---- external robot (RobotActionSource): finger poses reach the game as `/poses` do; gaze, pointing the Nao ---
 
   void step_external_robot(double t) {
-    for (const auto& p : robot_source_->finger_poses(t, tray_, body_->reach())) {
+    const auto commands = robot_source_->commands(t, tray_, body_->reach());
+    for (const auto& p : commands.finger) {
       tray_.robot_pose(p);
       robot_finger_ = p;
       robot_gaze_point_ = {p.x(), p.y(), 0.0};
       body_->follow_finger(p);
       last_pose_t_ = t;
+    }
+    if (commands.look_at) {
+      body_->look_at(*commands.look_at);
+      robot_gaze_point_ = *commands.look_at;
+      log_.emit({now(), "robot", "look_at", {{"x", commands.look_at->x()}, {"y", commands.look_at->y()},
+                                             {"z", commands.look_at->z()}}});
+    }
+    if (commands.point_at) {
+      body_->point_at(*commands.point_at);
+      last_pose_t_ = t;
+      log_.emit({now(), "robot", "point_at", {{"x", commands.point_at->x()}, {"y", commands.point_at->y()}}});
     }
     rest_when_idle(t);
   }

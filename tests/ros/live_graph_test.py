@@ -235,6 +235,25 @@ def case_client(g):
         time.sleep(0.2)
     time.sleep(1.0)
     check("dropped a malformed pose" in g.log("serve"), "serve logs the malformed /poses message")
+    from geometry_msgs.msg import PointStamped  # gaze targets turn the simulated Nao's head
+    from sensor_msgs.msg import JointState
+    look = rospy.Publisher("freeplay/robot/look_at", PointStamped, queue_size=1)
+    deadline = time.monotonic() + 10
+    while look.get_num_connections() == 0:
+        check(time.monotonic() < deadline, "serve did not connect to our freeplay/robot/look_at publisher")
+        time.sleep(0.1)
+
+    def head_yaw_looking_at(x, y):
+        target = PointStamped()
+        target.header.frame_id = "sandtray"
+        target.point.x, target.point.y = x, y
+        look.publish(target)
+        time.sleep(1.0)
+        joints = rospy.wait_for_message("/joint_states", JointState, timeout=10)
+        return joints.position[list(joints.name).index("HeadYaw")]
+    left, right = head_yaw_looking_at(0.05, -0.17), head_yaw_looking_at(0.55, -0.17)
+    print(f"HeadYaw looking at the left end {left:.3f} rad, at the right end {right:.3f} rad")
+    check(abs(left - right) > 0.1, f"look_at turns the head (HeadYaw {left} vs {right})")
     item_positions(rospy)  # the simulation runs on
     check(g.procs[1][1].poll() is None, "serve still runs after bad goals and malformed poses")
 

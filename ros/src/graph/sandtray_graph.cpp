@@ -3,6 +3,7 @@
 #include <actionlib/server/action_server.h>
 #include <freeplay_sandbox_msgs/PlaygroundNavigationAction.h>
 #include <freeplay_sandbox_msgs/PlaygroundPlan.h>
+#include <geometry_msgs/PointStamped.h>
 #include <geometry_msgs/PoseStamped.h>
 #include <nav_msgs/OccupancyGrid.h>
 #include <ros/ros.h>
@@ -23,6 +24,7 @@
 #include <deque>
 #include <map>
 #include <mutex>
+#include <utility>
 
 #include "freeplay/ros/graph.hpp"
 
@@ -40,6 +42,18 @@ const char* const kSignals[] = {"start_visual_tracking", "start_tutorial", "star
 constexpr double kPlanAnswerTimeoutS = 2.0;
 
 ros::Time stamp_of(double t) { return ros::Time(t); }
+
+// A gaze or pointing target in `sandtray` with a finite point; anything else is logged and dropped.
+bool valid_target(const geometry_msgs::PointStamped& m, const char* topic) {
+  const auto& p = m.point;
+  const std::string frame = m.header.frame_id;
+  if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && (frame == "sandtray" || frame == "/sandtray")) {
+    return true;
+  }
+  spdlog::warn("{}: dropped a malformed target (frame '{}', {} {} {}; expected frame sandtray and a finite point)",
+               topic, frame, p.x, p.y, p.z);
+  return false;
+}
 
 // True for a message this node published: intra-process delivery carries no connection header.
 bool own(const std::string& publisher) {
@@ -86,6 +100,8 @@ struct SandtrayGraph::Impl {
   std::condition_variable answered;
   std::deque<FingerPose> poses_in;
   std::deque<std::string> signals_in;
+  std::optional<std::array<double, 3>> look_at;
+  std::optional<std::array<double, 2>> point_at;
   std::uint64_t next_id = 1;
   std::map<std::uint64_t, NavigationServer::GoalHandle> goals;  // accepted, not yet ended
   std::map<std::uint64_t, bool> cancels;
@@ -119,6 +135,18 @@ struct SandtrayGraph::Impl {
     }
     subscribers.push_back(subscribe_events<geometry_msgs::PoseStamped>(
         "/poses", 10, [this](const ros::MessageEvent<const geometry_msgs::PoseStamped>& e) { on_pose(e); }));
+    subscribers.push_back(nh.subscribe<geometry_msgs::PointStamped>(
+        "freeplay/robot/look_at", 10, [this](const geometry_msgs::PointStamped::ConstPtr& m) {
+          if (!valid_target(*m, "freeplay/robot/look_at")) return;
+          std::lock_guard lock(mutex);
+          look_at = std::array<double, 3>{m->point.x, m->point.y, m->point.z};
+        }));
+    subscribers.push_back(nh.subscribe<geometry_msgs::PointStamped>(
+        "freeplay/robot/point_at", 10, [this](const geometry_msgs::PointStamped::ConstPtr& m) {
+          if (!valid_target(*m, "freeplay/robot/point_at")) return;
+          std::lock_guard lock(mutex);
+          point_at = std::array<double, 2>{m->point.x, m->point.y};
+        }));
     if (o.core_servers) {
       server = std::make_unique<NavigationServer>(
           nh, "move_sandbox_items", [this](NavigationServer::GoalHandle gh) { on_goal(gh); },
@@ -345,6 +373,16 @@ std::vector<FingerPose> SandtrayGraph::take_poses() {
   std::vector<FingerPose> out(impl_->poses_in.begin(), impl_->poses_in.end());
   impl_->poses_in.clear();
   return out;
+}
+
+std::optional<std::array<double, 3>> SandtrayGraph::take_look_at() {
+  std::lock_guard lock(impl_->mutex);
+  return std::exchange(impl_->look_at, std::nullopt);
+}
+
+std::optional<std::array<double, 2>> SandtrayGraph::take_point_at() {
+  std::lock_guard lock(impl_->mutex);
+  return std::exchange(impl_->point_at, std::nullopt);
 }
 
 std::vector<std::string> SandtrayGraph::take_signals() {

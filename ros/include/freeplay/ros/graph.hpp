@@ -135,6 +135,10 @@ class SandtrayGraph {
 
   /// `/poses` received from other nodes since the last call (malformed ones are logged and dropped).
   std::vector<FingerPose> take_poses();
+  /// The latest gaze target on `freeplay/robot/look_at` since the last call (x, y, z in `sandtray`).
+  std::optional<std::array<double, 3>> take_look_at();
+  /// The latest pointing target on `freeplay/robot/point_at` since the last call (x, y in `sandtray`).
+  std::optional<std::array<double, 2>> take_point_at();
   /// `sandtray/signals/*` received from other nodes since the last call (names without the prefix).
   std::vector<std::string> take_signals();
   /// The newest `move_sandbox_items` goal received since the last call (older unclaimed ones are preempted).
