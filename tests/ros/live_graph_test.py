@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Live ROS 1 graph checks of `freeplay serve` and `freeplay robot` against a real rosmaster.
 
-Usage: live_graph_test.py FREEPLAY SCENARIO CASE   (CASE: topics | client | robot | rate)
+Usage: live_graph_test.py FREEPLAY SCENARIO CASE   (CASE: topics | client | robot | rate | errors)
 
 Each case starts its own rosmaster on a free loopback port, the freeplay processes it needs, and a rospy client of
 ours (independent of the C++ code, with the freeplay_sandbox_msgs Python classes genpy generated at build time);
@@ -307,7 +307,25 @@ def case_robot(g):
     check(not summary["aborted"] and metrics["robot_item_moves_per_min"] > 0, "the episode counted the robot's moves")
 
 
+def case_errors():
+    """Bad input exits 2 with the allowed values; no master exits 1 with a clear message (no master started)."""
+    env = dict(os.environ, ROS_MASTER_URI="http://127.0.0.1:1")
+    child_child = os.path.join(os.path.dirname(SCENARIO), "child-child.yaml")
+    runs = [([FREEPLAY, "serve", child_child, "--robot", "external"], 2, "needs a child-robot scenario"),
+            ([FREEPLAY, "robot", "--policy", "nosuch"], 2, "unknown policy 'nosuch' (allowed: asocial"),
+            ([FREEPLAY, "serve", SCENARIO, "--master-timeout", "1"], 1, "no ROS master at http://127.0.0.1:1"),
+            ([FREEPLAY, "robot", "--master-timeout", "1"], 1, "no ROS master at http://127.0.0.1:1")]
+    for argv, status, needle in runs:
+        run = subprocess.run(argv, capture_output=True, text=True, timeout=60, env=env)
+        check(run.returncode == status and needle in run.stderr,
+              f"{argv[1:]}: exit {run.returncode} (want {status}), stderr {run.stderr!r} (want {needle!r})")
+
+
 def main():
+    if CASE == "errors":
+        case_errors()
+        print("errors: ok")
+        return
     cases = {"topics": case_topics, "client": case_client, "robot": case_robot, "rate": case_rate}
     with Graph() as g:
         try:
