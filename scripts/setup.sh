@@ -12,6 +12,11 @@ packages=(
   librosbag-storage-dev libsensor-msgs-dev libtf2-msgs-dev libgeometry-msgs-dev libstd-msgs-dev
   libvisualization-msgs-dev librcpputils-dev librcutils-dev libament-index-cpp-dev python3-rosbag
   libmp3lame-dev libssl-dev
+  # ROS 1 on a live graph (ros/: freeplay serve / robot) and its message generators and tests
+  libroscpp-dev libactionlib-dev libactionlib-msgs-dev libnav-msgs-dev libros-rosgraph-msgs-dev python3-genmsg
+  python3-gencpp python3-genpy ros-std-msgs ros-geometry-msgs ros-nav-msgs ros-actionlib-msgs python3-rospy
+  python3-rosmaster python3-rostopic python3-actionlib python3-tf2-msgs python3-sensor-msgs python3-geometry-msgs
+  python3-visualization-msgs python3-actionlib-msgs python3-nav-msgs
 )
 for arg in "$@"; do
   case "$arg" in

@@ -160,9 +160,11 @@ class Episode {
   }
 
   EpisodeResult run(const std::atomic<bool>& stop, EpisodeObservers* observers = nullptr,
-                    const EpisodeInfo* info = nullptr, ChildActionSource* child_source = nullptr) {
+                    const EpisodeInfo* info = nullptr, ChildActionSource* child_source = nullptr,
+                    RobotActionSource* robot_source = nullptr) {
     EpisodeResult result;
     child_source_ = child_source;
+    robot_source_ = robot_source;
     observers_ = observers != nullptr && !observers->empty() ? observers : nullptr;
     if (observers_ != nullptr) {
       for (auto& o : *observers_) o->begin(*info);
@@ -192,7 +194,9 @@ class Episode {
       if (t >= cap) break;
       if (((tick & 63) == 0 || observers_ != nullptr) && stop.load(std::memory_order_relaxed)) return aborted(result);
       step_children(t);
-      if (child_robot_) step_robot(t);
+      if (child_robot_) {
+        if (robot_source_ != nullptr) step_external_robot(t); else step_robot(t);
+      }
       code_players(t);
       tray_.step(kTickS);
       drain_tray_events();
@@ -713,6 +717,36 @@ class Episode {
       speech_pending_result_ = false;
       policy_->on_result({policies::ActionResult::Kind::SpeechFinished, "", ""});
     }
+    rest_when_idle(t);
+  }
+
+  // ---- external robot (RobotActionSource): finger poses reach the game as `/poses` do; gaze, pointing the Nao ---
+
+  void step_external_robot(double t) {
+    const auto commands = robot_source_->commands(t, tray_, body_->reach());
+    for (const auto& p : commands.finger) {
+      tray_.robot_pose(p);
+      robot_finger_ = p;
+      robot_gaze_point_ = {p.x(), p.y(), 0.0};
+      body_->follow_finger(p);
+      last_pose_t_ = t;
+    }
+    if (commands.look_at) {
+      body_->look_at(*commands.look_at);
+      robot_gaze_point_ = *commands.look_at;
+      log_.emit({now(), "robot", "look_at", {{"x", commands.look_at->x()}, {"y", commands.look_at->y()},
+                                             {"z", commands.look_at->z()}}});
+    }
+    if (commands.point_at) {
+      body_->point_at(*commands.point_at);
+      last_pose_t_ = t;
+      log_.emit({now(), "robot", "point_at", {{"x", commands.point_at->x()}, {"y", commands.point_at->y()}}});
+    }
+    rest_when_idle(t);
+  }
+
+  // nao_behaviours: the arm goes to rest after 30 s without poses.
+  void rest_when_idle(double t) {
     if (last_pose_t_ > -1e8 && t - last_pose_t_ > kRobotRestAfterS) {
       body_->rest();
       last_pose_t_ = -1e9;
@@ -1000,6 +1034,7 @@ class Episode {
   int moves_stolen_ = 0;
   bool move_unreported_ = false;
   ChildActionSource* child_source_ = nullptr;  // replaces the agents' actions when set
+  RobotActionSource* robot_source_ = nullptr;  // replaces the robot's policy and executor when set
   // Observers.
   EpisodeObservers* observers_ = nullptr;
   std::string stage_ = "greeting";
@@ -1021,9 +1056,9 @@ EpisodeResult run_episode(const Scenario& scenario, std::uint64_t seed, const Sh
 
 EpisodeResult run_episode(const Scenario& scenario, std::uint64_t seed, const SharedModels& models,
                           const std::atomic<bool>& stop, EpisodeObservers& observers, const EpisodeInfo& info,
-                          ChildActionSource* children) {
+                          ChildActionSource* children, RobotActionSource* robot) {
   Episode episode(scenario, seed, models);
-  return episode.run(stop, &observers, &info, children);
+  return episode.run(stop, &observers, &info, children, robot);
 }
 
 EpisodeFunction episode_function(const SharedModels& models, ObserverFactory observers, std::filesystem::path run_dir) {

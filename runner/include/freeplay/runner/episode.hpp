@@ -16,6 +16,7 @@
 #include "freeplay/core/event_log.hpp"
 #include "freeplay/runner/child_action_source.hpp"
 #include "freeplay/runner/episode_observer.hpp"
+#include "freeplay/runner/robot_action_source.hpp"
 #include "freeplay/runner/robot_body.hpp"
 #include "freeplay/runner/scenario.hpp"
 #include "freeplay/runner/suite_runner.hpp"
@@ -53,9 +54,10 @@ EpisodeResult run_episode(const Scenario& scenario, std::uint64_t seed, const Sh
 /// Same, with observers that see every 10 Hz tick of every stage (cameras, recorders); the result is identical
 /// to the run without observers except for the fields the observers add to the record. With `children`, the
 /// children's free-play actions come from it instead of the synthetic agents (which then leave no annotations).
+/// With `robot` (child-robot scenarios), the robot's finger poses come from it instead of its policy and executor.
 EpisodeResult run_episode(const Scenario& scenario, std::uint64_t seed, const SharedModels& models,
                           const std::atomic<bool>& stop, EpisodeObservers& observers, const EpisodeInfo& info,
-                          ChildActionSource* children = nullptr);
+                          ChildActionSource* children = nullptr, RobotActionSource* robot = nullptr);
 
 /// Makes the observers an episode of a scenario needs (cameras, recorder) for the run folder `run_dir`.
 using ObserverFactory = std::function<EpisodeObservers(const Scenario& scenario, const std::filesystem::path& run_dir)>;

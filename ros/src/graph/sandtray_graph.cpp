@@ -1,0 +1,446 @@
+// The sandtray game and core nodes on a live ROS 1 graph: every topic, latch and server of the real `sandtray`,
+// `map_and_plan`, `move_sandbox_items` and `sandbox_zones_from_image` nodes, as plain data for `freeplay serve`.
+#include <actionlib/server/action_server.h>
+#include <freeplay_sandbox_msgs/PlaygroundNavigationAction.h>
+#include <freeplay_sandbox_msgs/PlaygroundPlan.h>
+#include <geometry_msgs/PointStamped.h>
+#include <geometry_msgs/PoseStamped.h>
+#include <nav_msgs/OccupancyGrid.h>
+#include <ros/ros.h>
+#include <rosgraph_msgs/Clock.h>
+#include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/CompressedImage.h>
+#include <sensor_msgs/Image.h>
+#include <sensor_msgs/JointState.h>
+#include <spdlog/spdlog.h>
+#include <std_msgs/Empty.h>
+#include <std_msgs/String.h>
+#include <tf2_msgs/TFMessage.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <deque>
+#include <map>
+#include <mutex>
+#include <utility>
+
+#include "freeplay/ros/graph.hpp"
+
+namespace freeplay::ros_graph {
+
+namespace {
+
+using NavigationServer = actionlib::ActionServer<freeplay_sandbox_msgs::PlaygroundNavigationAction>;
+
+// Every signal of the game (§2.2): published by the game, the supervisor or both.
+const char* const kSignals[] = {"start_visual_tracking", "start_tutorial", "start_items_placement", "start_freeplay",
+                                "blank_interface", "clear_drawing", "shuffle_items", "items_to_stash",
+                                "robot_localising", "background_drawing", "visual_tracking_calibration_started",
+                                "visual_tracking_calibration_ended"};
+constexpr double kPlanAnswerTimeoutS = 2.0;
+
+ros::Time stamp_of(double t) { return ros::Time(t); }
+
+// A gaze or pointing target in `sandtray` with a finite point; anything else is logged and dropped.
+bool valid_target(const geometry_msgs::PointStamped& m, const char* topic) {
+  const auto& p = m.point;
+  const std::string frame = m.header.frame_id;
+  if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && (frame == "sandtray" || frame == "/sandtray")) {
+    return true;
+  }
+  spdlog::warn("{}: dropped a malformed target (frame '{}', {} {} {}; expected frame sandtray and a finite point)",
+               topic, frame, p.x, p.y, p.z);
+  return false;
+}
+
+// True for a message this node published: intra-process delivery carries no connection header.
+bool own(const std::string& publisher) {
+  return publisher == ros::this_node::getName() || publisher == "unknown_publisher";
+}
+
+visualization_msgs::Marker line_marker(const ros::Time& stamp, const Polyline& p) {
+  visualization_msgs::Marker m;
+  m.header.stamp = stamp;
+  m.header.frame_id = p.frame;
+  m.ns = p.ns;
+  m.id = p.id;
+  m.type = visualization_msgs::Marker::LINE_STRIP;
+  m.action = visualization_msgs::Marker::ADD;
+  m.pose.orientation.w = 1.0;
+  m.scale.x = p.width;
+  m.color.r = p.rgb[0];
+  m.color.g = p.rgb[1];
+  m.color.b = p.rgb[2];
+  m.color.a = 1.0F;
+  for (const auto& v : p.points) {
+    geometry_msgs::Point q;
+    q.x = v[0];
+    q.y = v[1];
+    m.points.push_back(q);
+  }
+  return m;
+}
+
+}  // namespace
+
+struct SandtrayGraph::Impl {
+  NodeOptions options;
+  ros::NodeHandle nh;
+  ros::Publisher clock, tf, footprints, zones, image, compressed, camera_info, map, events, speech, joints, poses,
+      markers;
+  std::map<std::string, ros::Publisher> signal_out;
+  std::vector<ros::Subscriber> subscribers;
+  std::unique_ptr<NavigationServer> server;
+  ros::ServiceServer plan_server;
+  ros::AsyncSpinner spinner{4};
+
+  mutable std::mutex mutex;
+  std::condition_variable answered;
+  std::deque<FingerPose> poses_in;
+  std::deque<std::string> signals_in;
+  std::optional<std::array<double, 3>> look_at;
+  std::optional<std::array<double, 2>> point_at;
+  std::uint64_t next_id = 1;
+  std::map<std::uint64_t, NavigationServer::GoalHandle> goals;  // accepted, not yet ended
+  std::map<std::uint64_t, bool> cancels;
+  std::optional<MoveGoal> pending_goal;
+  std::deque<PlanRequest> plan_requests;
+  std::map<std::uint64_t, std::optional<std::vector<std::array<double, 2>>>> plan_answers;
+
+  explicit Impl(const NodeOptions& o) : options(o) {
+    if (o.publish_clock) clock = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);
+    tf = nh.advertise<tf2_msgs::TFMessage>("/tf", 100);
+    footprints = nh.advertise<visualization_msgs::MarkerArray>("/footprints", 1, true);
+    zones = nh.advertise<visualization_msgs::MarkerArray>("/zones", 1, true);
+    image = nh.advertise<sensor_msgs::Image>("/sandtray/background/image", 1, true);
+    compressed = nh.advertise<sensor_msgs::CompressedImage>("/sandtray/background/image/compressed", 1, true);
+    camera_info = nh.advertise<sensor_msgs::CameraInfo>("/sandtray/background/camera_info", 1, true);
+    map = nh.advertise<nav_msgs::OccupancyGrid>("/map", 1);
+    events = nh.advertise<std_msgs::String>("sandtray/interaction_events", 10);
+    speech = nh.advertise<std_msgs::String>("speech", 10);
+    joints = nh.advertise<sensor_msgs::JointState>("/joint_states", 10);
+    poses = nh.advertise<geometry_msgs::PoseStamped>("/poses", 10);
+    markers = nh.advertise<visualization_msgs::Marker>("/visualization_markers", 10);
+    for (const char* name : kSignals) {
+      const std::string topic = std::string("sandtray/signals/") + name;
+      signal_out[name] = nh.advertise<std_msgs::Empty>(topic, 1);
+      subscribers.push_back(subscribe_events<std_msgs::Empty>(
+          topic, 10, [this, n = std::string(name)](const ros::MessageEvent<const std_msgs::Empty>& e) {
+            if (own(e.getPublisherName())) return;
+            std::lock_guard lock(mutex);
+            signals_in.push_back(n);
+          }));
+    }
+    subscribers.push_back(subscribe_events<geometry_msgs::PoseStamped>(
+        "/poses", 10, [this](const ros::MessageEvent<const geometry_msgs::PoseStamped>& e) { on_pose(e); }));
+    subscribers.push_back(nh.subscribe<geometry_msgs::PointStamped>(
+        "freeplay/robot/look_at", 10, [this](const geometry_msgs::PointStamped::ConstPtr& m) {
+          if (!valid_target(*m, "freeplay/robot/look_at")) return;
+          std::lock_guard lock(mutex);
+          look_at = std::array<double, 3>{m->point.x, m->point.y, m->point.z};
+        }));
+    subscribers.push_back(nh.subscribe<geometry_msgs::PointStamped>(
+        "freeplay/robot/point_at", 10, [this](const geometry_msgs::PointStamped::ConstPtr& m) {
+          if (!valid_target(*m, "freeplay/robot/point_at")) return;
+          std::lock_guard lock(mutex);
+          point_at = std::array<double, 2>{m->point.x, m->point.y};
+        }));
+    if (o.core_servers) {
+      server = std::make_unique<NavigationServer>(
+          nh, "move_sandbox_items", [this](NavigationServer::GoalHandle gh) { on_goal(gh); },
+          [this](NavigationServer::GoalHandle gh) { on_cancel(gh); }, false);
+      server->start();
+      plan_server = nh.advertiseService<freeplay_sandbox_msgs::PlaygroundPlan::Request,
+                                        freeplay_sandbox_msgs::PlaygroundPlan::Response>(
+          "plan_motion", [this](auto& request, auto& response) { return on_plan(request, response); });
+    }
+    spinner.start();
+  }
+
+  // Subscribes with the sender's connection header (a plain message callback loses the caller id).
+  template <class M>
+  ros::Subscriber subscribe_events(const std::string& topic, std::uint32_t queue,
+                                   const boost::function<void(const ros::MessageEvent<const M>&)>& callback) {
+    ros::SubscribeOptions subscription;
+    subscription.template initByFullCallbackType<const ros::MessageEvent<const M>&>(topic, queue, callback);
+    return nh.subscribe(subscription);
+  }
+
+  ~Impl() {
+    spinner.stop();
+    std::lock_guard lock(mutex);
+    for (auto& [id, gh] : goals) gh.setAborted({}, "freeplay serve stopped");
+    goals.clear();
+  }
+
+  void on_pose(const ros::MessageEvent<const geometry_msgs::PoseStamped>& e) {
+    if (own(e.getPublisherName())) return;  // our own executor's stream
+    const auto& msg = *e.getMessage();
+    const auto& p = msg.pose.position;
+    const std::string frame = msg.header.frame_id;
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || (frame != "sandtray" && frame != "/sandtray")) {
+      spdlog::warn("/poses from {}: dropped a malformed pose (frame '{}', x {}, y {}; expected frame sandtray and a "
+                   "finite point)", e.getPublisherName(), frame, p.x, p.y);
+      return;
+    }
+    std::lock_guard lock(mutex);
+    poses_in.push_back({p.x, p.y, frame, e.getPublisherName()});
+  }
+
+  void on_goal(NavigationServer::GoalHandle gh) {
+    const auto goal = gh.getGoal();
+    gh.setAccepted();
+    std::lock_guard lock(mutex);
+    const std::uint64_t id = next_id++;
+    if (pending_goal) {  // a newer goal replaces one the sandtray has not taken yet
+      auto it = goals.find(pending_goal->id);
+      if (it != goals.end()) {
+        it->second.setCanceled({}, "preempted by a newer goal");
+        goals.erase(it);
+      }
+    }
+    goals[id] = gh;
+    pending_goal = MoveGoal{id, goal->item, goal->goal.x, goal->goal.y, goal->goal.z};
+  }
+
+  void on_cancel(NavigationServer::GoalHandle gh) {
+    std::lock_guard lock(mutex);
+    for (const auto& [id, handle] : goals) {
+      if (handle == gh) cancels[id] = true;
+    }
+  }
+
+  bool on_plan(freeplay_sandbox_msgs::PlaygroundPlan::Request& request,
+               freeplay_sandbox_msgs::PlaygroundPlan::Response& response) {
+    std::unique_lock lock(mutex);
+    const std::uint64_t id = next_id++;
+    plan_requests.push_back({id, request.goal.header.frame_id, request.goal.pose.position.x,
+                             request.goal.pose.position.y});
+    plan_answers[id] = std::nullopt;
+    const bool got = answered.wait_for(lock, std::chrono::duration<double>(kPlanAnswerTimeoutS),
+                                       [&] { return plan_answers[id].has_value() || !ros::ok(); });
+    auto answer = std::move(plan_answers[id]);
+    plan_answers.erase(id);
+    if (!got || !answer) return false;
+    response.path.header.frame_id = "/sandtray";
+    response.path.header.stamp = ros::Time::now();
+    for (std::size_t i = 0; i < answer->size(); ++i) {
+      geometry_msgs::PoseStamped pose;
+      pose.header.frame_id = "/sandtray";
+      pose.header.stamp = ros::Time(0.1 * static_cast<double>(i));  // relative times, as map_and_plan
+      pose.pose.position.x = (*answer)[i][0];
+      pose.pose.position.y = (*answer)[i][1];
+      response.path.poses.push_back(pose);
+    }
+    return true;
+  }
+};
+
+SandtrayGraph::SandtrayGraph(const NodeOptions& options) : impl_(std::make_unique<Impl>(options)) {}
+SandtrayGraph::~SandtrayGraph() = default;
+
+bool SandtrayGraph::ok() const { return ros::ok(); }
+
+void SandtrayGraph::clock(double stamp) {
+  if (!impl_->options.publish_clock) return;
+  rosgraph_msgs::Clock msg;
+  msg.clock = stamp_of(stamp);
+  impl_->clock.publish(msg);
+}
+
+void SandtrayGraph::tf(double stamp, const std::vector<Transform>& transforms) {
+  tf2_msgs::TFMessage msg;
+  for (const auto& t : transforms) {
+    geometry_msgs::TransformStamped ts;
+    ts.header.stamp = stamp_of(stamp);
+    ts.header.frame_id = t.parent;
+    ts.child_frame_id = t.child;
+    ts.transform.translation.x = t.translation[0];
+    ts.transform.translation.y = t.translation[1];
+    ts.transform.translation.z = t.translation[2];
+    ts.transform.rotation.x = t.rotation[0];
+    ts.transform.rotation.y = t.rotation[1];
+    ts.transform.rotation.z = t.rotation[2];
+    ts.transform.rotation.w = t.rotation[3];
+    msg.transforms.push_back(ts);
+  }
+  impl_->tf.publish(msg);
+}
+
+void SandtrayGraph::footprints(double stamp, const std::vector<Polyline>& polygons) {
+  visualization_msgs::MarkerArray msg;
+  for (const auto& p : polygons) msg.markers.push_back(line_marker(stamp_of(stamp), p));
+  impl_->footprints.publish(msg);
+}
+
+void SandtrayGraph::zones(double stamp, const std::vector<Polyline>& polygons) {
+  visualization_msgs::MarkerArray msg;
+  visualization_msgs::Marker clear;
+  clear.header.stamp = stamp_of(stamp);
+  clear.header.frame_id = "/sandtray";
+  clear.action = visualization_msgs::Marker::DELETEALL;
+  msg.markers.push_back(clear);
+  for (const auto& p : polygons) msg.markers.push_back(line_marker(stamp_of(stamp), p));
+  impl_->zones.publish(msg);
+}
+
+void SandtrayGraph::background(double stamp, const Image& image) {
+  sensor_msgs::Image raw;
+  raw.header.stamp = stamp_of(stamp);
+  raw.header.frame_id = "sandtray";
+  raw.width = static_cast<std::uint32_t>(image.width);
+  raw.height = static_cast<std::uint32_t>(image.height);
+  raw.encoding = "rgba8";
+  raw.step = raw.width * 4;
+  raw.data = image.rgba;
+  impl_->image.publish(raw);
+  sensor_msgs::CompressedImage png;
+  png.header = raw.header;
+  png.format = "rgba8; png compressed bgr8";
+  png.data = image.png;
+  impl_->compressed.publish(png);
+  sensor_msgs::CameraInfo info;  // the game's ImagePublisher: K[0] = K[4] = 1 / pixel2meter (px per m)
+  info.header = raw.header;
+  info.width = raw.width;
+  info.height = raw.height;
+  const double f = 1.0 / image.pixel2meter;
+  info.K = {f, 0, 0, 0, f, 0, 0, 0, 1};
+  impl_->camera_info.publish(info);
+}
+
+void SandtrayGraph::map(double stamp, const Grid& grid) {
+  nav_msgs::OccupancyGrid msg;
+  msg.header.stamp = stamp_of(stamp);
+  msg.header.frame_id = "/sandtray";
+  msg.info.map_load_time = msg.header.stamp;
+  msg.info.resolution = static_cast<float>(grid.resolution);
+  msg.info.width = static_cast<std::uint32_t>(grid.width);
+  msg.info.height = static_cast<std::uint32_t>(grid.height);
+  msg.info.origin.position.x = grid.origin_x;
+  msg.info.origin.position.y = grid.origin_y;
+  msg.info.origin.orientation.w = 1.0;
+  msg.data = grid.cells;
+  impl_->map.publish(msg);
+}
+
+void SandtrayGraph::interaction_event(const std::string& message) {
+  std_msgs::String msg;
+  msg.data = message;
+  impl_->events.publish(msg);
+}
+
+void SandtrayGraph::signal(const std::string& name) {
+  const auto it = impl_->signal_out.find(name);
+  if (it != impl_->signal_out.end()) it->second.publish(std_msgs::Empty());
+}
+
+void SandtrayGraph::speech(const std::string& text) {
+  std_msgs::String msg;
+  msg.data = text;
+  impl_->speech.publish(msg);
+}
+
+void SandtrayGraph::joint_states(double stamp, const JointStates& joints) {
+  sensor_msgs::JointState msg;
+  msg.header.stamp = stamp_of(stamp);
+  msg.name = joints.names;
+  msg.position = joints.positions;
+  msg.velocity = joints.velocities;
+  msg.effort = joints.efforts;
+  impl_->joints.publish(msg);
+}
+
+void SandtrayGraph::finger(double stamp, double x, double y) {
+  geometry_msgs::PoseStamped msg;  // as move_sandbox_items: frame "/sandtray", orientation left all zeros
+  msg.header.stamp = stamp_of(stamp);
+  msg.header.frame_id = "/sandtray";
+  msg.pose.position.x = x;
+  msg.pose.position.y = y;
+  impl_->poses.publish(msg);
+}
+
+void SandtrayGraph::trajectory(double stamp, const std::vector<std::array<double, 2>>& points) {
+  Polyline line{"/sandtray", "item_motion_traj", 0, points, {1.F, 0.F, 0.F}, 0.01};
+  auto marker = line_marker(stamp_of(stamp), line);
+  marker.lifetime = ros::Duration(1.0);
+  impl_->markers.publish(marker);
+}
+
+std::vector<FingerPose> SandtrayGraph::take_poses() {
+  std::lock_guard lock(impl_->mutex);
+  std::vector<FingerPose> out(impl_->poses_in.begin(), impl_->poses_in.end());
+  impl_->poses_in.clear();
+  return out;
+}
+
+std::optional<std::array<double, 3>> SandtrayGraph::take_look_at() {
+  std::lock_guard lock(impl_->mutex);
+  return std::exchange(impl_->look_at, std::nullopt);
+}
+
+std::optional<std::array<double, 2>> SandtrayGraph::take_point_at() {
+  std::lock_guard lock(impl_->mutex);
+  return std::exchange(impl_->point_at, std::nullopt);
+}
+
+std::vector<std::string> SandtrayGraph::take_signals() {
+  std::lock_guard lock(impl_->mutex);
+  std::vector<std::string> out(impl_->signals_in.begin(), impl_->signals_in.end());
+  impl_->signals_in.clear();
+  return out;
+}
+
+std::optional<MoveGoal> SandtrayGraph::take_goal() {
+  std::lock_guard lock(impl_->mutex);
+  auto goal = std::move(impl_->pending_goal);
+  impl_->pending_goal.reset();
+  return goal;
+}
+
+bool SandtrayGraph::cancel_requested(std::uint64_t id) const {
+  std::lock_guard lock(impl_->mutex);
+  return impl_->cancels.count(id) != 0;
+}
+
+void SandtrayGraph::goal_feedback(std::uint64_t id, int percentage) {
+  std::lock_guard lock(impl_->mutex);
+  const auto it = impl_->goals.find(id);
+  if (it == impl_->goals.end()) return;
+  freeplay_sandbox_msgs::PlaygroundNavigationFeedback feedback;
+  feedback.percentage = percentage;
+  it->second.publishFeedback(feedback);
+}
+
+void SandtrayGraph::goal_done(std::uint64_t id, GoalEnd end, const std::string& status_text) {
+  std::lock_guard lock(impl_->mutex);
+  const auto it = impl_->goals.find(id);
+  if (it == impl_->goals.end()) return;
+  switch (end) {
+    case GoalEnd::Succeeded: it->second.setSucceeded({}, status_text); break;
+    case GoalEnd::Aborted: it->second.setAborted({}, status_text); break;
+    case GoalEnd::Preempted: it->second.setCanceled({}, status_text); break;
+  }
+  impl_->goals.erase(it);
+  impl_->cancels.erase(id);
+}
+
+std::vector<PlanRequest> SandtrayGraph::take_plan_requests() {
+  std::lock_guard lock(impl_->mutex);
+  std::vector<PlanRequest> out(impl_->plan_requests.begin(), impl_->plan_requests.end());
+  impl_->plan_requests.clear();
+  return out;
+}
+
+void SandtrayGraph::answer_plan(std::uint64_t id, const std::vector<std::array<double, 2>>& path) {
+  {
+    std::lock_guard lock(impl_->mutex);
+    const auto it = impl_->plan_answers.find(id);
+    if (it == impl_->plan_answers.end()) return;  // the caller gave up waiting
+    it->second = path;
+  }
+  impl_->answered.notify_all();
+}
+
+}  // namespace freeplay::ros_graph

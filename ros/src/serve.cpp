@@ -1,0 +1,299 @@
+#include "freeplay/ros/serve.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+#include <thread>
+
+#include "freeplay/core/rng.hpp"
+#include "freeplay/planning/move_executor.hpp"
+#include "freeplay/planning/plan.hpp"
+#include "freeplay/ros/graph.hpp"
+#include "freeplay/runner/sandtray_world.hpp"
+#include "freeplay/runner/scenario.hpp"
+#include "freeplay/sim/screen.hpp"
+#include "freeplay/ros/graph_messages.hpp"
+
+namespace freeplay::ros_live {
+
+namespace {
+
+constexpr double kBackgroundPeriodS = 0.25;  // the game checks the drawing every 250 ms
+constexpr int kMapEveryTicks = 2;            // map_and_plan publishes /map at 5 Hz
+
+// What a served episode shares between its publisher (observer) and its external robot.
+struct Live {
+  ros_graph::SandtrayGraph* graph = nullptr;
+  double stamp_origin = 0.0;  // ROS time of sandtray time 0
+  double stamp(double t) const { return stamp_origin + t; }
+};
+
+class GraphRobot;
+void serve_plans(GraphRobot& robot, const sim::Sandtray& tray);
+
+/// Publishes every tick of the episode on the graph, paced to the wall clock.
+class LivePublisher final : public runner::EpisodeObserver {
+ public:
+  LivePublisher(Live& live, double rate, bool sim_robot) : live_(live), rate_(rate), sim_robot_(sim_robot) {}
+
+  void observe(const runner::EpisodeSnapshot& s) override {
+    const auto due = pace(s.t);
+    auto& g = *live_.graph;
+    const double stamp = live_.stamp(s.t);
+    g.clock(stamp);
+    auto frames = game_frames(*s.tray);
+    const auto links = camera_links();
+    frames.insert(frames.end(), links.begin(), links.end());
+    if (reach_) frames.push_back(arm_reach_frame(*reach_));
+    g.tf(stamp, frames);
+    lateness_ms_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - due).count());
+    if (!footprints_sent_) {
+      g.footprints(stamp, footprint_markers(*s.tray));
+      footprints_sent_ = true;
+    }
+    if (s.tray->background_version() != background_version_ && s.t - background_t_ >= kBackgroundPeriodS - 1e-9) {
+      background_version_ = s.tray->background_version();
+      background_t_ = s.t;
+      g.background(stamp, background_image(*s.tray));
+      g.zones(stamp, zone_markers(*s.tray));
+    }
+    if (tick_++ % kMapEveryTicks == 0) g.map(stamp, occupancy_map(*s.tray));
+    for (const auto& e : s.new_events) publish_event(e);
+    if (robot_ != nullptr) serve_plans(*robot_, *s.tray);
+    if (s.robot != nullptr) {
+      g.joint_states(stamp, {s.robot->joint_names, s.robot->positions, s.robot->velocities, s.robot->efforts});
+      if (sim_robot_ && s.robot->finger) {  // our in-process move_sandbox_items streaming /poses
+        g.finger(stamp, s.robot->finger->x(), s.robot->finger->y());
+        trajectory_.push_back({s.robot->finger->x(), s.robot->finger->y()});
+        g.trajectory(stamp, trajectory_);
+      } else {
+        trajectory_.clear();
+      }
+    }
+    if (s.stage != "freeplay") {
+      for (const auto& p : g.take_poses()) {  // as the game: poses are ignored while the sandbox is hidden
+        spdlog::debug("/poses from {} ignored outside free play", p.publisher);
+      }
+      g.take_look_at();  // the external robot acts in free play only
+      g.take_point_at();
+    }
+    for (const auto& name : g.take_signals()) {
+      spdlog::info("received sandtray/signals/{} (the served protocol drives the game's stages; not applied)", name);
+    }
+  }
+
+  /// Answers `plan_motion` through `robot` at every tick (`--robot external`).
+  void set_planner(GraphRobot* robot) { robot_ = robot; }
+
+  /// Sets the arm-reach disc published as the `arm_reach` frame.
+  void set_reach(const runner::ReachDisc& reach) { reach_ = reach; }
+
+  /// Lateness percentiles of the ticks published so far.
+  ServeTiming timing() const {
+    ServeTiming out;
+    out.ticks = lateness_ms_.size();
+    if (lateness_ms_.empty()) return out;
+    auto sorted = lateness_ms_;
+    std::sort(sorted.begin(), sorted.end());
+    auto at = [&](double q) { return sorted[static_cast<std::size_t>(q * static_cast<double>(sorted.size() - 1))]; };
+    out.p50_late_ms = at(0.5);
+    out.p99_late_ms = at(0.99);
+    out.max_late_ms = sorted.back();
+    return out;
+  }
+
+ private:
+  // Sleeps until tick `t` is due on the wall clock; returns when it was due.
+  std::chrono::steady_clock::time_point pace(double t) {
+    using clock = std::chrono::steady_clock;
+    if (!start_) {
+      start_ = clock::now();
+      t0_ = t;
+    }
+    const auto due = *start_ + std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>((t - t0_) / rate_));
+    std::this_thread::sleep_until(due);
+    return due;
+  }
+
+  void publish_event(const Event& e) {
+    auto& g = *live_.graph;
+    if (e.type == "interaction_event") g.interaction_event(e.data.value("message", ""));
+    if (e.type == "say" && e.source == "robot") g.speech(e.data.value("text", ""));
+    if (e.source == "protocol" && e.type == "stage") {
+      static const std::map<std::string, std::string> kSignals = {
+          {"tutorial", "start_tutorial"}, {"freeplay", "start_freeplay"}, {"debriefing", "blank_interface"}};
+      if (const auto it = kSignals.find(e.data.value("stage", "")); it != kSignals.end()) g.signal(it->second);
+    }
+  }
+
+  Live& live_;
+  double rate_;
+  bool sim_robot_;
+  std::optional<runner::ReachDisc> reach_;
+  GraphRobot* robot_ = nullptr;
+  std::optional<std::chrono::steady_clock::time_point> start_;
+  double t0_ = 0.0;
+  bool footprints_sent_ = false;
+  std::uint64_t background_version_ = ~std::uint64_t{0};
+  double background_t_ = -1e9;
+  long tick_ = 0;
+  std::vector<std::array<double, 2>> trajectory_;
+  std::vector<double> lateness_ms_;
+};
+
+/// `--robot external`: the finger follows `/poses` from the graph, and the `move_sandbox_items` action and
+/// `plan_motion` service run here on the episode's clock (as the real core nodes beside the game).
+class GraphRobot final : public runner::RobotActionSource {
+ public:
+  GraphRobot(Live& live, const runner::Scenario& scenario, LivePublisher& publisher, std::uint64_t seed)
+      : live_(live), scenario_(scenario), publisher_(publisher), rng_(seed) {}
+
+  runner::RobotCommands commands(double /*t*/, const sim::Sandtray& tray, const runner::ReachDisc& reach) override {
+    auto& g = *live_.graph;
+    runner::RobotCommands out;
+    if (const auto look = g.take_look_at()) out.look_at = Eigen::Vector3d((*look)[0], (*look)[1], (*look)[2]);
+    if (const auto point = g.take_point_at()) out.point_at = Vec2((*point)[0], (*point)[1]);
+    publisher_.set_reach(reach);
+    if (!executor_) executor_ = runner::make_move_executor(scenario_, reach.centre, reach.radius);
+    const auto world = runner::sandtray_move_world(tray);
+    for (const auto& p : g.take_poses()) out.finger.emplace_back(p.x, p.y);
+    if (auto goal = g.take_goal()) start(*goal, tray, world);
+    if (executor_->status() != planning::MoveStatus::Running) return out;
+    if (g.cancel_requested(goal_id_)) executor_->cancel();
+    const double stamp = live_.stamp(tray.time());
+    planning::MoveOutputs outputs;
+    outputs.finger = [&](const planning::TimedPose& pose) {
+      out.finger.push_back(pose.position);
+      g.finger(stamp, pose.position.x(), pose.position.y());
+    };
+    outputs.feedback = [&](int percentage) { g.goal_feedback(goal_id_, percentage); };
+    if (executor_->status() == planning::MoveStatus::Running) executor_->step(0.1, world, outputs);
+    if (executor_->status() != planning::MoveStatus::Running) finish();
+    return out;
+  }
+
+  /// Answers the waiting `plan_motion` requests on the game as it is now (map_and_plan serves in every stage).
+  void serve_plans(const sim::Sandtray& tray) {
+    const auto requests = live_.graph->take_plan_requests();
+    if (requests.empty()) return;
+    const auto world = runner::sandtray_move_world(tray);
+    for (const auto& request : requests) answer(request, tray, world);
+  }
+
+ private:
+  // A goal the real server would execute blindly is checked first: a clear abort beats a robot dragging nothing.
+  std::string refusal(const ros_graph::MoveGoal& goal, const sim::Sandtray& tray) const {
+    if (tray.catalogue().find(goal.item) == nullptr) {
+      return fmt::format("unknown item '{}' (allowed: {})", goal.item, tray.catalogue().names());
+    }
+    if (!std::isfinite(goal.x) || !std::isfinite(goal.y) || !std::isfinite(goal.z)) {
+      return fmt::format("goal ({}, {}, {}) is not a finite point", goal.x, goal.y, goal.z);
+    }
+    if (!sim::on_screen({goal.x, goal.y})) {
+      return fmt::format("goal ({:.3f}, {:.3f}) is off the screen (sandtray frame: 0 ≤ x ≤ {}, −{} ≤ y ≤ 0)", goal.x,
+                         goal.y, sim::kScreenWidthM, sim::kScreenHeightM);
+    }
+    return "";
+  }
+
+  void start(const ros_graph::MoveGoal& goal, const sim::Sandtray& tray, const planning::MoveWorld& world) {
+    auto& g = *live_.graph;
+    if (const auto why = refusal(goal, tray); !why.empty()) {
+      spdlog::warn("move_sandbox_items: aborted goal {}: {}", goal.id, why);
+      g.goal_done(goal.id, ros_graph::GoalEnd::Aborted, why);
+      return;
+    }
+    if (executor_->status() == planning::MoveStatus::Running) {
+      executor_->cancel();
+      g.goal_done(goal_id_, ros_graph::GoalEnd::Preempted, "preempted by a newer goal");
+    }
+    goal_id_ = goal.id;
+    executor_->start({goal.item, {goal.x, goal.y}}, world, rng_);
+    if (executor_->status() != planning::MoveStatus::Running) finish();
+  }
+
+  void finish() {
+    const auto& outcome = executor_->current();
+    const auto end = outcome.status == planning::MoveStatus::Succeeded ? ros_graph::GoalEnd::Succeeded
+                     : outcome.status == planning::MoveStatus::Preempted ? ros_graph::GoalEnd::Preempted
+                                                                         : ros_graph::GoalEnd::Aborted;
+    const std::string text = end == ros_graph::GoalEnd::Succeeded ? "" : outcome.reason() + ": " + outcome.message;
+    live_.graph->goal_done(goal_id_, end, text);
+  }
+
+  void answer(const ros_graph::PlanRequest& request, const sim::Sandtray& tray, const planning::MoveWorld& world) {
+    std::string item = request.frame;
+    if (!item.empty() && item.front() == '/') item.erase(0, 1);
+    std::vector<std::array<double, 2>> path;
+    if (tray.catalogue().find(item) != nullptr && std::isfinite(request.x) && std::isfinite(request.y)) {
+      const auto pose = tray.item(item).pose;  // the goal is in the item's frame, the path starts at its origin
+      planning::PlanRequest plan;
+      plan.item = item;
+      plan.start = pose.position();
+      plan.goal = pose.position() + Eigen::Rotation2Dd(pose.theta) * Vec2(request.x, request.y);
+      plan.obstacles = world.footprints();
+      plan.time_budget_s = scenario_.planner_budget_s;
+      const auto result = planning::plan_motion(scenario_.planner, plan, rng_);
+      if (!result.ok) spdlog::warn("plan_motion: no path for {}: {}", item, result.message);
+      for (const auto& p : result.path) path.push_back({p.position.x(), p.position.y()});
+    } else {
+      spdlog::warn("plan_motion: no path for frame '{}' to ({}, {}): not an item or not a finite point", request.frame,
+                   request.x, request.y);
+    }
+    live_.graph->answer_plan(request.id, path);
+  }
+
+  Live& live_;
+  const runner::Scenario& scenario_;
+  LivePublisher& publisher_;
+  Rng rng_;
+  std::unique_ptr<planning::MoveExecutor> executor_;
+  std::uint64_t goal_id_ = 0;
+};
+
+void serve_plans(GraphRobot& robot, const sim::Sandtray& tray) { robot.serve_plans(tray); }
+
+/// Hands every tick to the publisher (the episode owns its observers; the publisher outlives the episode).
+class PublisherRef final : public runner::EpisodeObserver {
+ public:
+  explicit PublisherRef(LivePublisher& publisher) : publisher_(publisher) {}
+  void observe(const runner::EpisodeSnapshot& snapshot) override { publisher_.observe(snapshot); }
+
+ private:
+  LivePublisher& publisher_;
+};
+
+}  // namespace
+
+runner::EpisodeResult serve(const runner::Scenario& scenario, std::uint64_t seed, const ServeOptions& options,
+                            const std::atomic<bool>& stop, ServeTiming* timing) {
+  std::string error;
+  if (!ros_graph::start_ros(options.node_name, options.master_timeout_s, error)) throw std::runtime_error(error);
+  const bool child_robot = scenario.condition == "child-robot";
+  ros_graph::SandtrayGraph graph({options.node_name, options.rate != 1.0, options.external_robot && child_robot});
+  Live live{&graph, ros_graph::wall_now()};
+  LivePublisher publisher(live, options.rate, !options.external_robot);
+  if (child_robot) {
+    const auto body = runner::SharedModels::shipped().robot_body(scenario.robot_mode, scenario.arm_reach_m);
+    publisher.set_reach(body->reach());
+  }
+  std::unique_ptr<GraphRobot> robot;
+  if (options.external_robot && child_robot) {
+    robot = std::make_unique<GraphRobot>(live, scenario, publisher, SeedSequence(seed).seed_for("serve.planner"));
+    publisher.set_planner(robot.get());
+  }
+  runner::EpisodeObservers observers;
+  observers.push_back(std::make_unique<PublisherRef>(publisher));
+  const runner::EpisodeInfo info{&scenario, "serve", seed};
+  auto result = runner::run_episode(scenario, seed, runner::SharedModels::shipped(), stop, observers, info, nullptr,
+                                    robot.get());
+  if (timing != nullptr) *timing = publisher.timing();
+  return result;
+}
+
+}  // namespace freeplay::ros_live

@@ -1,0 +1,36 @@
+#pragma once
+// An optional replacement for the robot's policy and move executor in a child-robot episode: something outside the
+// episode (a live ROS graph: `freeplay serve --robot external`) moves the robot's virtual finger, and the episode
+// applies each pose as the game applies `/poses` (the Nao follows it, as nao_behaviours), and turns the Nao's head
+// and arm to the gaze and pointing targets it sends.
+
+#include <Eigen/Core>
+#include <optional>
+#include <vector>
+
+#include "freeplay/core/geometry.hpp"
+#include "freeplay/runner/robot_body.hpp"
+
+namespace freeplay::sim {
+class Sandtray;
+}
+
+namespace freeplay::runner {
+
+/// What an external robot does during one free-play tick.
+struct RobotCommands {
+  std::vector<Vec2> finger;                   ///< robot-finger poses (`/poses`, sandtray frame), in order
+  std::optional<Eigen::Vector3d> look_at;     ///< a gaze target (sandtray frame, m)
+  std::optional<Vec2> point_at;               ///< a pointing target on the screen (sandtray frame, m)
+};
+
+/// Supplies the robot's actions of an episode instead of its policy and move executor.
+class RobotActionSource {
+ public:
+  virtual ~RobotActionSource() = default;
+  /// What the robot does during the free-play tick that starts at `t` (s since free play started); `tray` is the
+  /// game as it is now and `reach` the robot's arm-reach disc (read only).
+  virtual RobotCommands commands(double t, const sim::Sandtray& tray, const ReachDisc& reach) = 0;
+};
+
+}  // namespace freeplay::runner
