@@ -1018,7 +1018,7 @@ EpisodeFunction episode_function(const SharedModels& models, ObserverFactory obs
     if (result.aborted) return out;
     out.record = std::move(result.record);
     out.simulated_s = result.simulated_s;
-    out.files["events/" + id + ".jsonl"] = result.events.to_jsonl();
+    if (task.events) out.files["events/" + id + ".jsonl"] = result.events.to_jsonl();
     out.files["annotations/" + id + ".yaml"] = agents::to_pinsoro_yaml(
         result.annotations, 0.0,
         fmt::format("Synthetic ground truth by freeplay-sim: {} episode {} seed {} (times: s since free play started)",

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <string>
 
@@ -43,13 +44,17 @@ const ColourRange& range_of(std::string_view colour) {
   throw InputError("unknown zone colour '" + std::string(colour) + "'", "colour", colour_list());
 }
 
-/// The real node's per-colour mask → contour steps on the downsampled HSV image.
-std::vector<std::vector<cv::Point>> contours_of(const cv::Mat& small_hsv, const HsvRange& range) {
-  static const cv::Mat kernel = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(3, 3));
-  cv::Mat mask;
+/// The real node's colour mask of the downsampled HSV image.
+void mask_of(const cv::Mat& small_hsv, const HsvRange& range, cv::Mat& mask) {
   cv::inRange(small_hsv, cv::Scalar(range.lower[0], range.lower[1], range.lower[2]),
               cv::Scalar(range.upper[0], range.upper[1], range.upper[2]), mask);
-  cv::morphologyEx(mask, mask, cv::MORPH_OPEN, kernel, cv::Point(-1, -1), 2);
+}
+
+/// The real node's mask → contour steps (opening, dilation, distance-transform threshold, contours).
+std::vector<std::vector<cv::Point>> contours_of(const cv::Mat& colour_mask) {
+  static const cv::Mat kernel = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(3, 3));
+  cv::Mat mask;
+  cv::morphologyEx(colour_mask, mask, cv::MORPH_OPEN, kernel, cv::Point(-1, -1), 2);
   if (cv::countNonZero(mask) == 0) return {};  // nothing of this colour: the remaining steps find no contour
   cv::dilate(mask, mask, kernel);
   cv::Mat distance;
@@ -64,6 +69,14 @@ std::vector<std::vector<cv::Point>> contours_of(const cv::Mat& small_hsv, const 
   std::vector<cv::Vec4i> hierarchy;
   cv::findContours(foreground, contours, hierarchy, cv::RETR_TREE, cv::CHAIN_APPROX_TC89_KCOS);
   return contours;
+}
+
+bool same_pixels(const cv::Mat& a, const cv::Mat& b) {
+  if (a.size() != b.size() || a.type() != b.type()) return false;
+  for (int row = 0; row < a.rows; ++row) {
+    if (std::memcmp(a.ptr(row), b.ptr(row), static_cast<std::size_t>(a.cols) * a.elemSize()) != 0) return false;
+  }
+  return true;
 }
 
 /// BGR → HSV, then a bilinear resize to `size` (the real node's order). Bilinear interpolation reads only the two
@@ -115,6 +128,10 @@ std::array<unsigned char, 3> zone_marker_rgb(std::string_view colour) {
 }
 
 ZoneMap ZoneMap::segment(const cv::Mat& bgr, double metres_per_pixel) {
+  return ZoneSegmenter().segment(bgr, metres_per_pixel);
+}
+
+ZoneMap ZoneSegmenter::segment(const cv::Mat& bgr, double metres_per_pixel) {
   if (bgr.empty()) throw InputError("the image is empty", "image", "a BGR CV_8UC3 image");
   if (bgr.type() != CV_8UC3) {
     throw InputError("the image has OpenCV type " + std::to_string(bgr.type()), "image", "a BGR CV_8UC3 image");
@@ -124,14 +141,25 @@ ZoneMap ZoneMap::segment(const cv::Mat& bgr, double metres_per_pixel) {
   }
   const int small_height =
       std::max(1, static_cast<int>(std::lround(static_cast<double>(bgr.rows) * kZoneSegmentationWidthPx / bgr.cols)));
-  const cv::Mat small = downsampled_hsv(bgr, cv::Size(kZoneSegmentationWidthPx, small_height));
+  small_hsv_ = downsampled_hsv(bgr, cv::Size(kZoneSegmentationWidthPx, small_height));
   const double scale_x = static_cast<double>(bgr.cols) / kZoneSegmentationWidthPx;
   const double scale_y = static_cast<double>(bgr.rows) / small_height;
+  ++counters_.images;
 
   ZoneMap map;
-  for (const auto& entry : kRanges) {
+  for (std::size_t c = 0; c < kRanges.size(); ++c) {
+    const auto& entry = kRanges[c];
+    auto& cached = cache_[c];
+    mask_of(small_hsv_, entry.range, mask_);
+    if (same_pixels(mask_, cached.mask)) {
+      ++counters_.masks_reused;
+    } else {
+      ++counters_.masks_recomputed;
+      mask_.copyTo(cached.mask);
+      cached.contours = contours_of(cached.mask);
+    }
     int id = 0;
-    for (const auto& contour : contours_of(small, entry.range)) {
+    for (const auto& contour : cached.contours) {
       Zone zone;
       zone.colour = std::string(entry.colour);
       zone.id = id++;

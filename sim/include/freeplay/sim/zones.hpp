@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -39,6 +40,15 @@ std::array<unsigned char, 3> zone_marker_rgb(std::string_view colour);
 /// Width the real node downsamples the image to before segmenting (pixels).
 inline constexpr int kZoneSegmentationWidthPx = 200;
 
+/// Counts of the work a ZoneSegmenter did (for tests and benchmarks).
+struct ZoneSegmenterCounters {
+  std::uint64_t images = 0;            ///< images segmented
+  std::uint64_t masks_recomputed = 0;  ///< colour masks that changed and were segmented again
+  std::uint64_t masks_reused = 0;      ///< colour masks that were unchanged and reused
+};
+
+class ZoneSegmenter;
+
 /// The zones of one background image (immutable once built).
 class ZoneMap {
  public:
@@ -58,7 +68,32 @@ class ZoneMap {
   std::size_t count(std::string_view colour) const;
 
  private:
+  friend class ZoneSegmenter;
   std::vector<Zone> zones_;
+};
+
+/// Segments a sequence of backgrounds, redoing a colour's morphology, distance transform and contours only when
+/// that colour's mask changed since the previous image (a stroke usually changes one or two of the seven masks).
+/// The zones are identical to ZoneMap::segment's.
+class ZoneSegmenter {
+ public:
+  /// Counts of the work done so far.
+  using Counters = ZoneSegmenterCounters;
+
+  /// Same checks and result as ZoneMap::segment.
+  ZoneMap segment(const cv::Mat& bgr, double metres_per_pixel);
+  /// Work done so far.
+  const Counters& counters() const { return counters_; }
+
+ private:
+  struct Cached {
+    cv::Mat mask;                                  // the colour's inRange mask of the previous image
+    std::vector<std::vector<cv::Point>> contours;  // its contours (small-image pixels)
+  };
+  std::array<Cached, kZoneColours.size()> cache_;
+  cv::Mat small_hsv_;
+  cv::Mat mask_;
+  Counters counters_;
 };
 
 }  // namespace freeplay::sim
