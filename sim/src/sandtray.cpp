@@ -388,8 +388,15 @@ struct Sandtray::Impl {
   }
 
   void publish_background() {
-    canvas.image().copyTo(published_background);  // reuses the buffer: no allocation per publication
-    zone_map = segmenter.segment(published_background, kScreenWidthM / static_cast<double>(canvas.width_px()));
+    // Only the pixels changed since the last publication are copied and converted again.
+    cv::Rect changed = canvas.unpublished_rect();
+    if (published_background.size() != canvas.image().size()) {
+      canvas.image().copyTo(published_background);
+      changed = cv::Rect(0, 0, published_background.cols, published_background.rows);
+    } else if (!changed.empty()) {
+      canvas.image()(changed).copyTo(published_background(changed));
+    }
+    zone_map = segmenter.segment(published_background, kScreenWidthM / static_cast<double>(canvas.width_px()), changed);
     canvas.mark_published();
     publish_requested = false;
     ++background_version;

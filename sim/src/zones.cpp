@@ -79,35 +79,19 @@ bool same_pixels(const cv::Mat& a, const cv::Mat& b) {
   return true;
 }
 
-/// BGR → HSV, then a bilinear resize to `size` (the real node's order). Bilinear interpolation reads only the two
-/// source rows around each destination row, so only those rows (with a one-row margin) are converted; the others
-/// stay zero and are never read. The result is identical to converting the whole image.
-cv::Mat downsampled_hsv(const cv::Mat& bgr, cv::Size size) {
-  std::vector<char> needed(static_cast<std::size_t>(bgr.rows), 0);
-  const double scale_y = static_cast<double>(bgr.rows) / size.height;
-  for (int dy = 0; dy < size.height; ++dy) {
-    // OpenCV computes the source row in single precision; mark the rows of both roundings.
+/// The source rows a bilinear resize from `rows` to `height` reads. OpenCV computes the source row in single
+/// precision; the rows of both roundings are marked (with a one-row margin).
+std::vector<char> rows_read_by_resize(int rows, int height) {
+  std::vector<char> needed(static_cast<std::size_t>(rows), 0);
+  const double scale_y = static_cast<double>(rows) / height;
+  for (int dy = 0; dy < height; ++dy) {
     const int sy_double = static_cast<int>(std::floor((dy + 0.5) * scale_y - 0.5));
     const int sy_float = static_cast<int>(std::floor(static_cast<float>((dy + 0.5) * scale_y - 0.5)));
     for (const int sy : {sy_double, sy_float}) {
-      for (int y = sy; y <= sy + 1; ++y) needed[static_cast<std::size_t>(std::clamp(y, 0, bgr.rows - 1))] = 1;
+      for (int y = sy; y <= sy + 1; ++y) needed[static_cast<std::size_t>(std::clamp(y, 0, rows - 1))] = 1;
     }
   }
-  cv::Mat hsv = cv::Mat::zeros(bgr.size(), CV_8UC3);
-  for (int y = 0; y < bgr.rows;) {
-    if (!needed[static_cast<std::size_t>(y)]) {
-      ++y;
-      continue;
-    }
-    int end = y;
-    while (end < bgr.rows && needed[static_cast<std::size_t>(end)]) ++end;
-    cv::Mat rows = hsv.rowRange(y, end);
-    cv::cvtColor(bgr.rowRange(y, end), rows, cv::COLOR_BGR2HSV);
-    y = end;
-  }
-  cv::Mat small;
-  cv::resize(hsv, small, size, 0, 0, cv::INTER_LINEAR);
-  return small;
+  return needed;
 }
 
 }  // namespace
@@ -131,7 +115,26 @@ ZoneMap ZoneMap::segment(const cv::Mat& bgr, double metres_per_pixel) {
   return ZoneSegmenter().segment(bgr, metres_per_pixel);
 }
 
-ZoneMap ZoneSegmenter::segment(const cv::Mat& bgr, double metres_per_pixel) {
+// BGR → HSV, then a bilinear resize (the real node's order). Bilinear interpolation reads only the two source rows
+// around each destination row, so only those rows are converted; the others stay zero and are never read. The
+// result is identical to converting the whole image.
+void ZoneSegmenter::convert_rows(const cv::Mat& bgr, const cv::Rect& region) {
+  for (int y = region.y; y < region.y + region.height;) {
+    if (!needed_[static_cast<std::size_t>(y)]) {
+      ++y;
+      continue;
+    }
+    int end = y;
+    while (end < region.y + region.height && needed_[static_cast<std::size_t>(end)]) ++end;
+    const cv::Range rows(y, end);
+    const cv::Range cols(region.x, region.x + region.width);
+    cv::Mat target = hsv_(rows, cols);
+    cv::cvtColor(bgr(rows, cols), target, cv::COLOR_BGR2HSV);
+    y = end;
+  }
+}
+
+ZoneMap ZoneSegmenter::segment(const cv::Mat& bgr, double metres_per_pixel, std::optional<cv::Rect> changed) {
   if (bgr.empty()) throw InputError("the image is empty", "image", "a BGR CV_8UC3 image");
   if (bgr.type() != CV_8UC3) {
     throw InputError("the image has OpenCV type " + std::to_string(bgr.type()), "image", "a BGR CV_8UC3 image");
@@ -141,7 +144,14 @@ ZoneMap ZoneSegmenter::segment(const cv::Mat& bgr, double metres_per_pixel) {
   }
   const int small_height =
       std::max(1, static_cast<int>(std::lround(static_cast<double>(bgr.rows) * kZoneSegmentationWidthPx / bgr.cols)));
-  small_hsv_ = downsampled_hsv(bgr, cv::Size(kZoneSegmentationWidthPx, small_height));
+  const cv::Rect whole(0, 0, bgr.cols, bgr.rows);
+  if (hsv_.size() != bgr.size()) {
+    hsv_ = cv::Mat::zeros(bgr.size(), CV_8UC3);
+    needed_ = rows_read_by_resize(bgr.rows, small_height);
+    changed = whole;
+  }
+  convert_rows(bgr, changed ? (*changed & whole) : whole);
+  cv::resize(hsv_, small_hsv_, cv::Size(kZoneSegmentationWidthPx, small_height), 0, 0, cv::INTER_LINEAR);
   const double scale_x = static_cast<double>(bgr.cols) / kZoneSegmentationWidthPx;
   const double scale_y = static_cast<double>(bgr.rows) / small_height;
   ++counters_.images;

@@ -4,6 +4,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -80,8 +81,9 @@ class ZoneSegmenter {
   /// Counts of the work done so far.
   using Counters = ZoneSegmenterCounters;
 
-  /// Same checks and result as ZoneMap::segment.
-  ZoneMap segment(const cv::Mat& bgr, double metres_per_pixel);
+  /// Same checks and result as ZoneMap::segment. With `changed`, the caller promises that `bgr` differs from the
+  /// previous image only inside that rectangle, and only those pixels are converted to HSV again.
+  ZoneMap segment(const cv::Mat& bgr, double metres_per_pixel, std::optional<cv::Rect> changed = std::nullopt);
   /// Work done so far.
   const Counters& counters() const { return counters_; }
 
@@ -90,7 +92,12 @@ class ZoneSegmenter {
     cv::Mat mask;                                  // the colour's inRange mask of the previous image
     std::vector<std::vector<cv::Point>> contours;  // its contours (small-image pixels)
   };
+  /// Converts the rows of `bgr` that the bilinear downsampling reads (inside `region`) into hsv_.
+  void convert_rows(const cv::Mat& bgr, const cv::Rect& region);
+
   std::array<Cached, kZoneColours.size()> cache_;
+  cv::Mat hsv_;                 // full-size HSV image; only the rows the downsampling reads are kept up to date
+  std::vector<char> needed_;    // rows of hsv_ the downsampling reads
   cv::Mat small_hsv_;
   cv::Mat mask_;
   Counters counters_;
