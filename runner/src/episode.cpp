@@ -566,9 +566,11 @@ class Episode {
 
   // ---- robot -----------------------------------------------------------------------------------------------
 
-  policies::Observation observe(double t) {
-    policies::Observation o;
+  // The robot's observation, reusing last tick's buffers; the zones are copied only after a new background.
+  const policies::Observation& observe(double t) {
+    policies::Observation& o = observation_;
     o.t = t;
+    o.items.clear();
     for (const auto& item : tray_.items()) {
       policies::ItemObservation obs;
       obs.name = item.name;
@@ -580,8 +582,14 @@ class Episode {
       }
       o.items.push_back(std::move(obs));
     }
-    o.zones = observation_zones_;
+    if (observed_zones_version_ != seen_zones_version_) {
+      o.zones = observation_zones_;
+      observed_zones_version_ = seen_zones_version_;
+    }
+    o.touches.clear();
     for (const auto& touch : tray_.touches()) o.touches.push_back({touch.finger, touch.position});
+    o.children.clear();
+    o.self = {};
     o.interaction_events = std::move(pending_interaction_events_);
     pending_interaction_events_.clear();
     if (policy_->perceives_children()) {
@@ -935,6 +943,8 @@ class Episode {
   int seen_zone_count_ = 0;
   std::uint64_t seen_zones_version_ = ~std::uint64_t{0};
   std::vector<policies::ZoneObservation> observation_zones_;
+  policies::Observation observation_;                      // the robot's observation, reused every tick
+  std::uint64_t observed_zones_version_ = ~std::uint64_t{0};  // seen_zones_version_ of observation_.zones
   // Robot.
   std::unique_ptr<policies::PlayPolicy> policy_;
   std::unique_ptr<planning::MoveExecutor> executor_;
