@@ -79,6 +79,51 @@ bool same_pixels(const cv::Mat& a, const cv::Mat& b) {
   return true;
 }
 
+std::uint64_t hash_of(const cv::Mat& mask) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  for (int row = 0; row < mask.rows; ++row) {
+    const auto* p = mask.ptr<unsigned char>(row);
+    const std::size_t bytes = static_cast<std::size_t>(mask.cols) * mask.elemSize();
+    std::size_t i = 0;
+    for (; i + 8 <= bytes; i += 8) {
+      std::uint64_t word;
+      std::memcpy(&word, p + i, 8);
+      h = (h ^ word) * 0x100000001b3ULL;
+      h ^= h >> 29;
+    }
+    for (; i < bytes; ++i) h = (h ^ p[i]) * 0x100000001b3ULL;
+  }
+  return h;
+}
+
+/// Contours of the masks this thread segmented recently (every episode starts with the same few backgrounds):
+/// a mask seen before is not segmented again. Contours are a pure function of the mask, so this changes nothing.
+class MaskMemo {
+ public:
+  const std::vector<std::vector<cv::Point>>* find(std::uint64_t hash, const cv::Mat& mask) const {
+    for (const auto& e : entries_) {
+      if (e.hash == hash && same_pixels(e.mask, mask)) return &e.contours;
+    }
+    return nullptr;
+  }
+  void add(std::uint64_t hash, const cv::Mat& mask, const std::vector<std::vector<cv::Point>>& contours) {
+    Entry& e = entries_.size() < kCapacity ? entries_.emplace_back() : entries_[next_++ % kCapacity];
+    e.hash = hash;
+    mask.copyTo(e.mask);
+    e.contours = contours;
+  }
+
+ private:
+  static constexpr std::size_t kCapacity = 32;
+  struct Entry {
+    std::uint64_t hash = 0;
+    cv::Mat mask;
+    std::vector<std::vector<cv::Point>> contours;
+  };
+  std::vector<Entry> entries_;
+  std::size_t next_ = 0;
+};
+
 /// The source rows a bilinear resize from `rows` to `height` reads. OpenCV computes the source row in single
 /// precision; the rows of both roundings are marked (with a one-row margin).
 std::vector<char> rows_read_by_resize(int rows, int height) {
@@ -164,9 +209,17 @@ ZoneMap ZoneSegmenter::segment(const cv::Mat& bgr, double metres_per_pixel, std:
     if (same_pixels(mask_, cached.mask)) {
       ++counters_.masks_reused;
     } else {
-      ++counters_.masks_recomputed;
+      thread_local MaskMemo memo;
       mask_.copyTo(cached.mask);
-      cached.contours = contours_of(cached.mask);
+      const std::uint64_t hash = hash_of(cached.mask);
+      if (const auto* known = memo.find(hash, cached.mask)) {
+        ++counters_.masks_reused;
+        cached.contours = *known;
+      } else {
+        ++counters_.masks_recomputed;
+        cached.contours = contours_of(cached.mask);
+        memo.add(hash, cached.mask, cached.contours);
+      }
     }
     int id = 0;
     for (const auto& contour : cached.contours) {

@@ -44,8 +44,8 @@ inline constexpr int kZoneSegmentationWidthPx = 200;
 /// Counts of the work a ZoneSegmenter did (for tests and benchmarks).
 struct ZoneSegmenterCounters {
   std::uint64_t images = 0;            ///< images segmented
-  std::uint64_t masks_recomputed = 0;  ///< colour masks that changed and were segmented again
-  std::uint64_t masks_reused = 0;      ///< colour masks that were unchanged and reused
+  std::uint64_t masks_recomputed = 0;  ///< colour masks segmented (new to this segmenter and its thread's memo)
+  std::uint64_t masks_reused = 0;      ///< colour masks unchanged since the last image, or seen before: reused
 };
 
 class ZoneSegmenter;
@@ -74,8 +74,8 @@ class ZoneMap {
 };
 
 /// Segments a sequence of backgrounds, redoing a colour's morphology, distance transform and contours only when
-/// that colour's mask changed since the previous image (a stroke usually changes one or two of the seven masks).
-/// The zones are identical to ZoneMap::segment's.
+/// that colour's mask changed since the previous image (a stroke usually changes one or two of the seven masks) and
+/// is not among the masks its thread segmented recently. The zones are identical to ZoneMap::segment's.
 class ZoneSegmenter {
  public:
   /// Counts of the work done so far.
