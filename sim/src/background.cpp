@@ -292,7 +292,9 @@ cv::Mat rasterise_background(BackgroundKind kind, int width_px) {
 
 }  // namespace
 
-cv::Mat render_background(BackgroundKind kind, int width_px) {
+cv::Mat render_background(BackgroundKind kind, int width_px) { return shared_background(kind, width_px).clone(); }
+
+cv::Mat shared_background(BackgroundKind kind, int width_px) {
   check_width(width_px);
   // Every episode shows the same few backgrounds: each is read and rasterised once per process (and assets folder).
   static std::mutex mutex;
@@ -302,7 +304,7 @@ cv::Mat render_background(BackgroundKind kind, int width_px) {
   std::lock_guard lock(mutex);
   auto it = rendered.find(key);
   if (it == rendered.end()) it = rendered.emplace(key, rasterise_background(kind, width_px)).first;
-  return it->second.clone();
+  return it->second;
 }
 
 }  // namespace freeplay::sim

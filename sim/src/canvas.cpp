@@ -41,17 +41,17 @@ std::vector<cv::Point2d> quadratic(const cv::Point2d& a, const cv::Point2d& c, c
 }  // namespace
 
 DrawingCanvas::DrawingCanvas(int width_px)
-    : background_(render_background(BackgroundKind::Blank, width_px)),
+    : background_(shared_background(BackgroundKind::Blank, width_px)),
       image_(background_.clone()),
       stroke_width_px_(std::max(1, static_cast<int>(std::lround(kStrokeWidthPx * width_px /
                                                                  static_cast<double>(kScreenWidthPx))))),
       unpublished_(0, 0, image_.cols, image_.rows) {}
 
 void DrawingCanvas::set_background(BackgroundKind kind) {
-  cv::Mat fresh = render_background(kind, image_.cols);
+  cv::Mat fresh = shared_background(kind, image_.cols);  // read only: strokes go into image_
   kind_ = kind;
   background_ = std::move(fresh);
-  image_ = background_.clone();
+  background_.copyTo(image_);
   strokes_.clear();
   touch(cv::Rect(0, 0, image_.cols, image_.rows));
 }
