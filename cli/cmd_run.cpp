@@ -118,6 +118,7 @@ void run_command(const RunCommandOptions& o, bool suite_command) {
   options.shard_index = shard.first;
   options.shard_count = shard.second;
   options.title = title;
+  options.events = runner::events_output_from_name(o.events);
   if (!o.quiet) {
     spdlog::info("{}: {} variant(s), {} episode(s){}, {} worker(s) → {}", suite.name, suite.variants.size(),
                  suite.total_episodes(),
@@ -156,8 +157,13 @@ void add_run_options(CLI::App* cmd, const std::shared_ptr<RunCommandOptions>& o,
                                           "(repeatable), e.g. --set planner.name=rrtconnect");
   cmd->add_flag("-q,--quiet", o->quiet, "No progress line and no summary on the terminal");
   cmd->add_flag("--record", o->record, "Record every episode as a ROS bag session folder (as `record: true`)");
+  cmd->add_option("--events", o->events,
+                  "Event logs to keep: all (events/<episode>.jsonl), gz (.jsonl.gz), none, or auto (all up to 1000 "
+                  "episodes in the run or shard, none above)")
+      ->check(CLI::IsMember({"auto", "all", "gz", "none"}));
   cmd->footer(
-      "Writes episodes.jsonl (one line per episode), events/<episode>.jsonl, annotations/<episode>.yaml "
+      "Writes episodes.jsonl (one line per episode), events/<episode>.jsonl (see --events), "
+      "annotations/<episode>.yaml "
       "(PInSoRo format), summary.csv and summary.md into the run folder. Ctrl-C stops cleanly: finished episodes "
       "are kept and summarised; the same command resumes. Exit status: 0 done, 1 error, 2 bad input, 130 "
       "interrupted.");

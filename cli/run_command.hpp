@@ -21,6 +21,7 @@ struct RunCommandOptions {
   bool quiet = false;                    ///< no progress, no summary
   bool no_summary = false;               ///< no summary on the terminal
   bool record = false;                   ///< record every episode (as `record: true`)
+  std::string events = "auto";           ///< event logs: auto, all, gz or none (see `--events`)
 };
 
 /// Runs (or resumes) the episodes of a scenario or suite into a run folder; exits 130 through CLI11 when

@@ -2,6 +2,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include <cmath>
+
 #include "freeplay/sim/background.hpp"
 #include "freeplay/sim/canvas.hpp"
 #include "freeplay/sim/item_catalogue.hpp"
@@ -27,6 +29,44 @@ void BM_ZoneSegmentation(benchmark::State& state) {
   state.counters["zones"] = static_cast<double>(zones);
 }
 BENCHMARK(BM_ZoneSegmentation)->Unit(benchmark::kMillisecond);
+
+/// What a background publication costs in an episode (960 px raster): one short stroke since the last
+/// publication, then the incremental segmentation (only the colour masks the stroke changed are redone).
+void BM_ZoneSegmentationAfterStroke(benchmark::State& state) {
+  DrawingCanvas canvas(960);
+  canvas.set_background(BackgroundKind::FreeplayMap);
+  const double scale = kScreenWidthM / canvas.width_px();
+  ZoneSegmenter segmenter;
+  segmenter.segment(canvas.image(), scale);
+  int k = 0;
+  for (auto _ : state) {
+    const Vec2 at(0.05 + 0.5 * ((k * 37) % 100) / 100.0, -0.05 - 0.25 * ((k * 61) % 100) / 100.0);
+    canvas.begin_stroke(1, k % 2 == 0 ? PaletteColour::Blue : PaletteColour::Red, at);
+    canvas.extend_stroke(1, at + Vec2(0.02, -0.01));
+    canvas.end_stroke(1);
+    ++k;
+    const ZoneMap map = segmenter.segment(canvas.image(), scale);
+    benchmark::DoNotOptimize(map.zones().size());
+  }
+  const auto& counters = segmenter.counters();
+  state.counters["masks_redone_share"] =
+      static_cast<double>(counters.masks_recomputed) / static_cast<double>(counters.masks_recomputed + counters.masks_reused);
+}
+BENCHMARK(BM_ZoneSegmentationAfterStroke)->Unit(benchmark::kMicrosecond);
+
+/// One 10 Hz stroke extension on the 960 px raster (a child drawing: smoothing + anti-aliased 25 px line).
+void BM_StrokeExtension(benchmark::State& state) {
+  DrawingCanvas canvas(960);
+  canvas.set_background(BackgroundKind::FreeplayMap);
+  canvas.begin_stroke(1, PaletteColour::Green, {0.1, -0.1});
+  int k = 0;
+  for (auto _ : state) {
+    const double phase = 0.05 * k++;
+    canvas.extend_stroke(1, {0.3 + 0.2 * std::sin(phase), -0.17 + 0.12 * std::cos(1.3 * phase)});
+  }
+  canvas.end_stroke(1);
+}
+BENCHMARK(BM_StrokeExtension)->Unit(benchmark::kMicrosecond);
 
 /// The full screen image (map + strokes, stash, palette, all 10 items rotated, touches, robot hand).
 void BM_ScreenImage(benchmark::State& state) {

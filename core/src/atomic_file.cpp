@@ -15,6 +15,11 @@
 namespace freeplay {
 
 void write_file_atomically(const std::filesystem::path& path, std::string_view contents) {
+  write_file_atomically(path, [&](const std::function<void(std::string_view)>& write) { write(contents); });
+}
+
+void write_file_atomically(const std::filesystem::path& path,
+                           const std::function<void(const std::function<void(std::string_view)>&)>& produce) {
   const auto parent = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
   std::filesystem::create_directories(parent);
   std::string tmp_name = fmt::format(".{}.tmp-XXXXXX", path.filename().string());
@@ -24,16 +29,20 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
     throw std::runtime_error(fmt::format("cannot create a temporary file beside {}: {}", path.string(),
                                          std::strerror(errno)));
   }
-  std::size_t written = 0;
-  while (written < contents.size()) {
-    const auto n = ::write(fd, contents.data() + written, contents.size() - written);
-    if (n < 0) {
-      const int err = errno;
-      ::close(fd);
-      ::unlink(tmp.c_str());
-      throw std::runtime_error(fmt::format("cannot write {}: {}", path.string(), std::strerror(err)));
+  const auto write = [&](std::string_view contents) {
+    std::size_t written = 0;
+    while (written < contents.size()) {
+      const auto n = ::write(fd, contents.data() + written, contents.size() - written);
+      if (n < 0) throw std::runtime_error(fmt::format("cannot write {}: {}", path.string(), std::strerror(errno)));
+      written += static_cast<std::size_t>(n);
     }
-    written += static_cast<std::size_t>(n);
+  };
+  try {
+    produce(write);
+  } catch (...) {  // nothing half-written stays behind
+    ::close(fd);
+    ::unlink(tmp.c_str());
+    throw;
   }
   if (::fsync(fd) != 0 || ::close(fd) != 0) {
     const int err = errno;

@@ -15,7 +15,6 @@ namespace freeplay::planning {
 
 namespace {
 
-constexpr std::uint64_t kClockCheckPeriod = 1024;  // expansions between two reads of the budget clock
 constexpr std::array<std::array<int, 2>, 8> kNeighbours = {
     {{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1}, {1, -1}, {-1, 1}, {-1, -1}}};
 
@@ -38,9 +37,9 @@ double heuristic_cells(AStarHeuristic heuristic, int dcol, int drow) {
 
 GridSearchResult astar_search(const OccupancyGrid& grid, const Cell& start, const Cell& goal,
                               AStarHeuristic heuristic, int outside_margin_cells, double time_budget_s) {
-  using Clock = std::chrono::steady_clock;
-  const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
-                                           std::chrono::duration<double>(time_budget_s));
+  const double budget = std::max(0.0, time_budget_s) * kAStarExpansionsPerBudgetSecond;
+  const auto max_expansions = budget >= 1.8e19 ? std::numeric_limits<std::uint64_t>::max()
+                                               : static_cast<std::uint64_t>(budget);
   const int margin = std::max(0, outside_margin_cells);
   const int width = OccupancyGrid::kCols + 2 * margin;
   const int height = OccupancyGrid::kRows + 2 * margin;
@@ -83,7 +82,7 @@ GridSearchResult astar_search(const OccupancyGrid& grid, const Cell& start, cons
     closed[top.node] = true;
     ++result.expanded;
     if (top.node == goal_node) break;
-    if (result.expanded % kClockCheckPeriod == 0 && Clock::now() > deadline) {
+    if (result.expanded > max_expansions) {
       result.timed_out = true;
       return result;
     }

@@ -139,14 +139,40 @@ void measure_path(const PlanRequest& request, PlanResult& result) {
   }
   result.metrics.path_length_m = length;
 
+  // A polygon lies inside its bounding box, so two disjoint boxes bound the clearance from below by their gap: a
+  // pair whose boxes are farther apart than the current minimum cannot lower it and is skipped (same result, less
+  // work). Overlapping boxes say nothing (the clearance may be a negative depth) and are always measured.
+  struct Box {
+    Vec2 lo, hi;
+  };
+  const auto gap = [](const Box& a, const Box& b) {
+    const double dx = std::max({0.0, a.lo.x() - b.hi.x(), b.lo.x() - a.hi.x()});
+    const double dy = std::max({0.0, a.lo.y() - b.hi.y(), b.lo.y() - a.hi.y()});
+    return std::hypot(dx, dy);
+  };
+  std::vector<Box> boxes;
+  boxes.reserve(request.obstacles.size());
+  for (const auto& obstacle : request.obstacles) {
+    const auto [lo, hi] = bounds(obstacle.footprint);
+    boxes.push_back({lo, hi});
+  }
+  Box moved{Vec2::Zero(), Vec2::Zero()};
+  if (request.moved_footprint) {
+    const auto [lo, hi] = bounds(*request.moved_footprint);
+    moved = {lo, hi};
+  }
   double clearance = std::numeric_limits<double>::infinity();
   Polygon2 body;
   for (const auto& pose : result.path) {
-    for (const auto& obstacle : request.obstacles) {
+    const Vec2 shift = pose.position - request.start;
+    const Box here = request.moved_footprint ? Box{moved.lo + shift, moved.hi + shift} : Box{pose.position, pose.position};
+    for (std::size_t k = 0; k < request.obstacles.size(); ++k) {
+      const auto& obstacle = request.obstacles[k];
       if (obstacle.name == request.item) continue;
+      const double box_gap = gap(here, boxes[k]);
+      if (box_gap > 0.0 && box_gap > clearance + 1e-9) continue;  // the margin absorbs rounding
       if (request.moved_footprint) {
         body = *request.moved_footprint;
-        const Vec2 shift = pose.position - request.start;
         for (auto& v : body) v += shift;
         clearance = std::min(clearance, body_clearance(body, obstacle.footprint));
       } else {

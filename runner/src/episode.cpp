@@ -581,9 +581,11 @@ class Episode {
 
   // ---- robot -----------------------------------------------------------------------------------------------
 
-  policies::Observation observe(double t) {
-    policies::Observation o;
+  // The robot's observation, reusing last tick's buffers; the zones are copied only after a new background.
+  const policies::Observation& observe(double t) {
+    policies::Observation& o = observation_;
     o.t = t;
+    o.items.clear();
     for (const auto& item : tray_.items()) {
       policies::ItemObservation obs;
       obs.name = item.name;
@@ -595,8 +597,14 @@ class Episode {
       }
       o.items.push_back(std::move(obs));
     }
-    o.zones = observation_zones_;
+    if (observed_zones_version_ != seen_zones_version_) {
+      o.zones = observation_zones_;
+      observed_zones_version_ = seen_zones_version_;
+    }
+    o.touches.clear();
     for (const auto& touch : tray_.touches()) o.touches.push_back({touch.finger, touch.position});
+    o.children.clear();
+    o.self = {};
     o.interaction_events = std::move(pending_interaction_events_);
     pending_interaction_events_.clear();
     if (policy_->perceives_children()) {
@@ -990,6 +998,8 @@ class Episode {
   int seen_zone_count_ = 0;
   std::uint64_t seen_zones_version_ = ~std::uint64_t{0};
   std::vector<policies::ZoneObservation> observation_zones_;
+  policies::Observation observation_;                      // the robot's observation, reused every tick
+  std::uint64_t observed_zones_version_ = ~std::uint64_t{0};  // seen_zones_version_ of observation_.zones
   // Robot.
   std::unique_ptr<policies::PlayPolicy> policy_;
   std::unique_ptr<planning::MoveExecutor> executor_;
@@ -1074,7 +1084,7 @@ EpisodeFunction episode_function(const SharedModels& models, ObserverFactory obs
     if (result.aborted) return out;
     out.record = std::move(result.record);
     out.simulated_s = result.simulated_s;
-    out.files["events/" + id + ".jsonl"] = result.events.to_jsonl();
+    if (task.events) out.files["events/" + id + ".jsonl"] = result.events.to_jsonl();
     out.files["annotations/" + id + ".yaml"] = agents::to_pinsoro_yaml(
         result.annotations, 0.0,
         fmt::format("Synthetic ground truth by freeplay-sim: {} episode {} seed {} (times: s since free play started)",

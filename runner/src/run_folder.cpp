@@ -4,6 +4,7 @@
 #include <fmt/chrono.h>
 #include <fmt/format.h>
 #include <unistd.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -20,7 +21,25 @@ namespace freeplay::runner {
 
 namespace {
 constexpr const char* kEpisodesFile = "episodes.jsonl";
+
+std::string finished_key(const std::string& variant, int index) { return fmt::format("{}\n{}", variant, index); }
+
+/// Calls `visit(line, offset)` for every complete line of `path`; returns the bytes up to the last good line and
+/// whether a torn or unparsable last line stopped the scan.
+template <typename Visit>
+std::pair<std::uint64_t, bool> scan_lines(const std::filesystem::path& path, Visit&& visit) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  std::uint64_t offset = 0;
+  while (std::getline(in, line)) {
+    if (in.eof()) return {offset, true};  // no newline: a torn final write (the episode simply runs again)
+    const std::uint64_t next = offset + line.size() + 1;
+    if (!line.empty() && !visit(line, offset)) return {offset, true};
+    offset = next;
+  }
+  return {offset, false};
 }
+}  // namespace
 
 RunFolder::RunFolder(std::filesystem::path dir) : dir_(std::move(dir)) {
   std::error_code ec;
@@ -29,47 +48,32 @@ RunFolder::RunFolder(std::filesystem::path dir) : dir_(std::move(dir)) {
                            {dir_.string(), 0, 0});
   const auto path = dir_ / kEpisodesFile;
   if (!std::filesystem::exists(path)) return;
-  std::ifstream in(path, std::ios::binary);
-  std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  std::size_t start = 0;
-  std::size_t good_bytes = 0;
-  while (start < content.size()) {
-    const auto end = content.find('\n', start);
-    if (end == std::string::npos) {
-      dropped_partial_ = true;  // torn final write: the episode will simply run again
-      break;
+  const auto [good_bytes, dropped] = scan_lines(path, [&](const std::string& line, std::uint64_t) {
+    try {
+      const auto record = nlohmann::json::parse(line);
+      finished_.insert_or_assign(finished_key(record.value("variant", ""), record.value("episode", -1)),
+                                 record.value("config_hash", std::uint64_t{0}));
+      ++records_;
+      return true;
+    } catch (const nlohmann::json::exception&) {
+      return false;
     }
-    const auto line = content.substr(start, end - start);
-    if (!line.empty()) {
-      try {
-        records_.push_back(nlohmann::json::parse(line));
-      } catch (const nlohmann::json::exception&) {
-        dropped_partial_ = true;
-        break;
-      }
-    }
-    start = end + 1;
-    good_bytes = start;
-  }
-  if (dropped_partial_) {
-    std::filesystem::resize_file(path, good_bytes);
-  }
+  });
+  dropped_partial_ = dropped;
+  if (dropped_partial_) std::filesystem::resize_file(path, good_bytes);
 }
 
 bool RunFolder::finished(const std::string& variant, int index, std::uint64_t config_hash) const {
   std::lock_guard lock(mutex_);
-  for (const auto& r : records_) {
-    if (r.value("variant", "") == variant && r.value("episode", -1) == index) {
-      if (r.value("config_hash", std::uint64_t{0}) != config_hash) {
-        throw InputError(fmt::format("this run folder already holds episode {} of '{}' from a different "
-                                     "configuration; resume only with the same scenario and overrides",
-                                     index, variant),
-                         "--out", "a new folder, or the original configuration", {dir_.string(), 0, 0});
-      }
-      return true;
-    }
+  const auto it = finished_.find(finished_key(variant, index));
+  if (it == finished_.end()) return false;
+  if (it->second != config_hash) {
+    throw InputError(fmt::format("this run folder already holds episode {} of '{}' from a different "
+                                 "configuration; resume only with the same scenario and overrides",
+                                 index, variant),
+                     "--out", "a new folder, or the original configuration", {dir_.string(), 0, 0});
   }
-  return false;
+  return true;
 }
 
 void RunFolder::append(const nlohmann::json& record) {
@@ -82,27 +86,62 @@ void RunFolder::append(const nlohmann::json& record) {
   const bool ok = n == static_cast<ssize_t>(line.size()) && ::fsync(fd) == 0;
   ::close(fd);
   if (!ok) throw std::runtime_error(fmt::format("cannot append to {}: {}", path.string(), std::strerror(errno)));
-  records_.push_back(record);
+  finished_.insert_or_assign(finished_key(record.value("variant", ""), record.value("episode", -1)),
+                             record.value("config_hash", std::uint64_t{0}));
+  ++records_;
+}
+
+void RunFolder::for_each_record(const std::function<void(const nlohmann::json&)>& visit) const {
+  std::lock_guard lock(mutex_);
+  scan_lines(dir_ / kEpisodesFile, [&](const std::string& line, std::uint64_t) {
+    visit(nlohmann::json::parse(line));
+    return true;
+  });
 }
 
 std::vector<nlohmann::json> RunFolder::records() const {
+  std::vector<nlohmann::json> out;
+  for_each_record([&](const nlohmann::json& record) { out.push_back(record); });
+  return out;
+}
+
+std::size_t RunFolder::record_count() const {
   std::lock_guard lock(mutex_);
   return records_;
 }
 
 void RunFolder::finalize(const std::vector<std::string>& variant_order) {
   std::lock_guard lock(mutex_);
-  std::map<std::string, std::size_t> rank;
-  for (std::size_t i = 0; i < variant_order.size(); ++i) rank[variant_order[i]] = i;
-  std::stable_sort(records_.begin(), records_.end(), [&](const auto& a, const auto& b) {
-    const auto ra = rank.count(a.value("variant", "")) ? rank[a.value("variant", "")] : rank.size();
-    const auto rb = rank.count(b.value("variant", "")) ? rank[b.value("variant", "")] : rank.size();
-    if (ra != rb) return ra < rb;
-    return a.value("episode", 0) < b.value("episode", 0);
+  std::unordered_map<std::string, std::size_t> rank;
+  for (std::size_t i = 0; i < variant_order.size(); ++i) rank.emplace(variant_order[i], i);
+  // The sort keeps only positions (a few bytes per record); the lines are copied from the old file in order.
+  struct Line {
+    std::size_t rank;
+    int episode;
+    std::uint64_t offset;
+    std::uint64_t length;
+  };
+  std::vector<Line> lines;
+  const auto path = dir_ / kEpisodesFile;
+  scan_lines(path, [&](const std::string& line, std::uint64_t offset) {
+    const auto record = nlohmann::json::parse(line);
+    const auto it = rank.find(record.value("variant", ""));
+    lines.push_back({it != rank.end() ? it->second : rank.size(), record.value("episode", 0), offset, line.size()});
+    return true;
   });
-  std::string out;
-  for (const auto& r : records_) out += r.dump() + "\n";
-  write_file_atomically(dir_ / kEpisodesFile, out);
+  std::stable_sort(lines.begin(), lines.end(), [](const Line& a, const Line& b) {
+    return a.rank != b.rank ? a.rank < b.rank : a.episode < b.episode;
+  });
+  std::ifstream in(path, std::ios::binary);
+  std::string buffer;
+  write_file_atomically(path, [&](const std::function<void(std::string_view)>& write) {
+    for (const auto& line : lines) {
+      buffer.resize(line.length + 1);
+      in.seekg(static_cast<std::streamoff>(line.offset));
+      in.read(buffer.data(), static_cast<std::streamsize>(line.length + 1));
+      write(buffer);
+    }
+  });
 }
 
 void RunFolder::write(const std::string& relative, std::string_view contents) const {
@@ -122,6 +161,24 @@ std::filesystem::path RunFolder::default_dir(const std::string& name) {
   const auto now = std::chrono::system_clock::now();
   return std::filesystem::path("runs") /
          fmt::format("{:%Y%m%d-%H%M%S}-{}", fmt::gmtime(std::chrono::system_clock::to_time_t(now)), name);
+}
+
+std::string gzip_compress(std::string_view contents) {
+  z_stream stream{};
+  constexpr int kGzipWindowBits = 15 + 16;  // deflate window 2^15, gzip header and trailer
+  if (deflateInit2(&stream, Z_DEFAULT_COMPRESSION, Z_DEFLATED, kGzipWindowBits, 8, Z_DEFAULT_STRATEGY) != Z_OK) {
+    throw std::runtime_error("zlib: cannot start a gzip stream");
+  }
+  std::string out(deflateBound(&stream, static_cast<uLong>(contents.size())) + 32, '\0');
+  stream.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(contents.data()));
+  stream.avail_in = static_cast<uInt>(contents.size());
+  stream.next_out = reinterpret_cast<Bytef*>(out.data());
+  stream.avail_out = static_cast<uInt>(out.size());
+  const int status = deflate(&stream, Z_FINISH);
+  deflateEnd(&stream);
+  if (status != Z_STREAM_END) throw std::runtime_error("zlib: gzip compression did not finish");
+  out.resize(stream.total_out);
+  return out;
 }
 
 }  // namespace freeplay::runner

@@ -18,6 +18,14 @@ std::uint64_t episode_seed(std::uint64_t scenario_seed, int index) {
   return SeedSequence(scenario_seed).seed_for(fmt::format("episode/{}", index));
 }
 
+EventsOutput events_output_from_name(std::string_view name) {
+  if (name == "auto") return EventsOutput::Auto;
+  if (name == "all") return EventsOutput::All;
+  if (name == "gz") return EventsOutput::Gz;
+  if (name == "none") return EventsOutput::None;
+  throw InputError(fmt::format("unknown event-log output '{}'", name), "--events", "auto, all, gz, none");
+}
+
 bool in_shard(const std::string& variant_id, int index, int shard_index, int shard_count) {
   if (shard_count <= 1) return true;
   // Round-robin on the episode index, offset per variant: balanced within ±1 per variant and deterministic.
@@ -30,7 +38,9 @@ std::string write_summaries(const std::filesystem::path& dir, const Suite& suite
   RunFolder folder(dir);
   std::vector<std::string> order;
   for (const auto& v : suite.variants) order.push_back(v.id);
-  const auto summaries = summarize_run(folder.records(), order);
+  RunSummarizer summarizer(order);
+  folder.for_each_record([&](const nlohmann::json& record) { summarizer.add(record); });
+  const auto summaries = summarizer.finish();
   const auto markdown = summary_markdown(summaries, title);
   folder.write("summary.csv", summary_csv(summaries));
   folder.write("summary.md", markdown);
@@ -62,6 +72,15 @@ RunReport run_suite(const Suite& suite, const RunOptions& options, const Episode
       tasks.push_back({&variant, i, episode_seed(variant.scenario.seed, i)});
     }
   }
+  auto events = options.events;
+  if (events == EventsOutput::Auto) {
+    events = report.total > kAutoEventsMaxEpisodes ? EventsOutput::None : EventsOutput::All;
+    if (events == EventsOutput::None) {
+      spdlog::info("{} episodes in this run: no event logs (per-episode output stays small); pass --events all "
+                   "or --events gz to keep them", report.total);
+    }
+  }
+  for (auto& task : tasks) task.events = events != EventsOutput::None;
   if (report.skipped > 0) {
     spdlog::info("resuming {}: {} of {} episodes already finished", folder.dir().string(), report.skipped,
                  report.total);
@@ -80,7 +99,15 @@ RunReport run_suite(const Suite& suite, const RunOptions& options, const Episode
         auto output = run_episode(task, stop);
         if (stop.load() && output.record.is_null()) return;  // aborted mid-episode: not recorded
         const auto file_id = RunFolder::episode_file_id(task.variant->id, task.index);
-        for (const auto& [relative, contents] : output.files) folder.write(relative, contents);
+        for (const auto& [relative, contents] : output.files) {
+          const bool event_log = relative.starts_with("events/");
+          if (event_log && events == EventsOutput::None) continue;
+          if (event_log && events == EventsOutput::Gz) {
+            folder.write(relative + ".gz", gzip_compress(contents));
+          } else {
+            folder.write(relative, contents);
+          }
+        }
         auto& r = output.record;
         r["variant"] = task.variant->id;
         r["scenario"] = task.variant->scenario.name;
@@ -112,7 +139,7 @@ RunReport run_suite(const Suite& suite, const RunOptions& options, const Episode
   std::vector<std::string> order;
   for (const auto& v : suite.variants) order.push_back(v.id);
   folder.finalize(order);
-  report.finished = static_cast<int>(folder.records().size()) - report.skipped;
+  report.finished = static_cast<int>(folder.record_count()) - report.skipped;
   report.interrupted = stop.load() && report.skipped + report.finished < report.total;
   write_summaries(folder.dir(), suite, options.title.empty() ? suite.name : options.title);
   if (first_error) std::rethrow_exception(first_error);

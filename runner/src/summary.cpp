@@ -33,31 +33,46 @@ std::map<std::string, double> flatten_numbers(const nlohmann::json& value, const
   return out;
 }
 
-std::vector<VariantSummary> summarize_run(const std::vector<nlohmann::json>& records,
-                                          const std::vector<std::string>& variant_order) {
-  std::vector<VariantSummary> out;
+RunSummarizer::RunSummarizer(const std::vector<std::string>& variant_order) {
   for (const auto& variant : variant_order) {
-    VariantSummary s;
-    s.variant = variant;
-    std::map<std::string, std::vector<double>> values;
-    for (const auto& r : records) {
-      if (r.value("variant", "") != variant) continue;
-      ++s.episodes;
-      s.condition = r.value("condition", "");
-      s.policy = r.value("policy", "");
-      const double duration = r.value("duration_s", std::nan(""));
-      s.durations_s.push_back(duration);
-      values["duration_s"].push_back(duration);
-      for (const auto& [key, v] : flatten_numbers(r.value("metrics", nlohmann::json::object()), "metrics")) {
-        values[key].push_back(v);
-      }
-    }
-    if (s.episodes == 0) continue;
+    if (index_.contains(variant)) continue;
+    index_.emplace(variant, variants_.size());
+    variants_.emplace_back().summary.variant = variant;
+  }
+}
+
+void RunSummarizer::add(const nlohmann::json& r) {
+  const auto it = index_.find(r.value("variant", ""));
+  if (it == index_.end()) return;
+  auto& [s, values] = variants_[it->second];
+  ++s.episodes;
+  s.condition = r.value("condition", "");
+  s.policy = r.value("policy", "");
+  const double duration = r.value("duration_s", std::nan(""));
+  s.durations_s.push_back(duration);
+  values["duration_s"].push_back(duration);
+  for (const auto& [key, v] : flatten_numbers(r.value("metrics", nlohmann::json::object()), "metrics")) {
+    values[key].push_back(v);
+  }
+}
+
+std::vector<VariantSummary> RunSummarizer::finish() const {
+  std::vector<VariantSummary> out;
+  for (const auto& [summary, values] : variants_) {
+    if (summary.episodes == 0) continue;
+    auto s = summary;
     std::uint64_t seed = 1;
     for (const auto& [metric, v] : values) s.metrics.push_back({metric, summarize(v, seed++)});
     out.push_back(std::move(s));
   }
   return out;
+}
+
+std::vector<VariantSummary> summarize_run(const std::vector<nlohmann::json>& records,
+                                          const std::vector<std::string>& variant_order) {
+  RunSummarizer summarizer(variant_order);
+  for (const auto& r : records) summarizer.add(r);
+  return summarizer.finish();
 }
 
 std::string summary_csv(const std::vector<VariantSummary>& summaries) {

@@ -6,7 +6,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <mutex>
 #include <string>
+#include <tuple>
 
 #include <opencv2/imgproc.hpp>
 
@@ -274,8 +277,9 @@ cv::Mat render_map(const MapDescription& map, int width_px) {
   return image;
 }
 
-cv::Mat render_background(BackgroundKind kind, int width_px) {
-  check_width(width_px);
+namespace {
+
+cv::Mat rasterise_background(BackgroundKind kind, int width_px) {
   switch (kind) {
     case BackgroundKind::Blank: return cv::Mat(raster_height(width_px), width_px, CV_8UC3, cv::Scalar(0, 0, 0));
     case BackgroundKind::FreeplayMap:
@@ -284,6 +288,23 @@ cv::Mat render_background(BackgroundKind kind, int width_px) {
       return render_map(MapDescription::load(asset_path("backgrounds/tutorial.yaml")), width_px);
   }
   return {};
+}
+
+}  // namespace
+
+cv::Mat render_background(BackgroundKind kind, int width_px) { return shared_background(kind, width_px).clone(); }
+
+cv::Mat shared_background(BackgroundKind kind, int width_px) {
+  check_width(width_px);
+  // Every episode shows the same few backgrounds: each is read and rasterised once per process (and assets folder).
+  static std::mutex mutex;
+  static std::map<std::tuple<int, int, std::string>, cv::Mat> rendered;
+  const auto key = std::make_tuple(static_cast<int>(kind), width_px,
+                                   kind == BackgroundKind::Blank ? std::string() : asset_path("backgrounds").string());
+  std::lock_guard lock(mutex);
+  auto it = rendered.find(key);
+  if (it == rendered.end()) it = rendered.emplace(key, rasterise_background(kind, width_px)).first;
+  return it->second;
 }
 
 }  // namespace freeplay::sim

@@ -41,18 +41,19 @@ std::vector<cv::Point2d> quadratic(const cv::Point2d& a, const cv::Point2d& c, c
 }  // namespace
 
 DrawingCanvas::DrawingCanvas(int width_px)
-    : background_(render_background(BackgroundKind::Blank, width_px)),
+    : background_(shared_background(BackgroundKind::Blank, width_px)),
       image_(background_.clone()),
       stroke_width_px_(std::max(1, static_cast<int>(std::lround(kStrokeWidthPx * width_px /
-                                                                 static_cast<double>(kScreenWidthPx))))) {}
+                                                                 static_cast<double>(kScreenWidthPx))))),
+      unpublished_(0, 0, image_.cols, image_.rows) {}
 
 void DrawingCanvas::set_background(BackgroundKind kind) {
-  cv::Mat fresh = render_background(kind, image_.cols);
+  cv::Mat fresh = shared_background(kind, image_.cols);  // read only: strokes go into image_
   kind_ = kind;
   background_ = std::move(fresh);
-  image_ = background_.clone();
+  background_.copyTo(image_);
   strokes_.clear();
-  touch();
+  touch(cv::Rect(0, 0, image_.cols, image_.rows));
 }
 
 cv::Point2d DrawingCanvas::to_pixel(const Vec2& p) const {
@@ -104,7 +105,7 @@ void DrawingCanvas::end_stroke(int stroke_id) {
 void DrawingCanvas::clear_strokes() {
   background_.copyTo(image_);
   for (auto& [id, stroke] : strokes_) stroke.last_mid = stroke.last_point;
-  touch();
+  touch(cv::Rect(0, 0, image_.cols, image_.rows));
 }
 
 void DrawingCanvas::paint_path(const std::vector<cv::Point2d>& path, PaletteColour colour) {
@@ -135,11 +136,12 @@ void DrawingCanvas::paint_path(const std::vector<cv::Point2d>& path, PaletteColo
   } else {
     cv::polylines(target, lines, false, bgr_of(colour), stroke_width_px_, cv::LINE_AA, kShiftBits);
   }
-  touch();
+  touch(roi);
 }
 
-void DrawingCanvas::touch() {
+void DrawingCanvas::touch(const cv::Rect& changed) {
   dirty_ = true;
+  unpublished_ = unpublished_.empty() ? changed : (unpublished_ | changed);
   hash_cache_.reset();
 }
 

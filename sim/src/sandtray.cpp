@@ -161,6 +161,7 @@ struct Sandtray::Impl {
   DrawingCanvas canvas;
   cv::Mat published_background;
   ZoneMap zone_map;
+  ZoneSegmenter segmenter;
   std::uint64_t background_version = 0;
   bool publish_requested = false;
   ScreenRenderer renderer;
@@ -387,8 +388,15 @@ struct Sandtray::Impl {
   }
 
   void publish_background() {
-    published_background = canvas.image().clone();
-    zone_map = ZoneMap::segment(published_background, kScreenWidthM / static_cast<double>(canvas.width_px()));
+    // Only the pixels changed since the last publication are copied and converted again.
+    cv::Rect changed = canvas.unpublished_rect();
+    if (published_background.size() != canvas.image().size()) {
+      canvas.image().copyTo(published_background);
+      changed = cv::Rect(0, 0, published_background.cols, published_background.rows);
+    } else if (!changed.empty()) {
+      canvas.image()(changed).copyTo(published_background(changed));
+    }
+    zone_map = segmenter.segment(published_background, kScreenWidthM / static_cast<double>(canvas.width_px()), changed);
     canvas.mark_published();
     publish_requested = false;
     ++background_version;
@@ -828,6 +836,8 @@ double Sandtray::drawing_coverage() const { return impl_->canvas.coverage(); }
 std::uint64_t Sandtray::background_version() const { return impl_->background_version; }
 
 const ZoneMap& Sandtray::zones() const { return impl_->zone_map; }
+
+const ZoneSegmenterCounters& Sandtray::zone_counters() const { return impl_->segmenter.counters(); }
 
 cv::Mat Sandtray::render_screen(int width_px) const {
   const Impl& d = *impl_;

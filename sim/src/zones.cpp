@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <string>
 
@@ -43,13 +44,17 @@ const ColourRange& range_of(std::string_view colour) {
   throw InputError("unknown zone colour '" + std::string(colour) + "'", "colour", colour_list());
 }
 
-/// The real node's per-colour mask → contour steps on the downsampled HSV image.
-std::vector<std::vector<cv::Point>> contours_of(const cv::Mat& small_hsv, const HsvRange& range) {
-  static const cv::Mat kernel = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(3, 3));
-  cv::Mat mask;
+/// The real node's colour mask of the downsampled HSV image.
+void mask_of(const cv::Mat& small_hsv, const HsvRange& range, cv::Mat& mask) {
   cv::inRange(small_hsv, cv::Scalar(range.lower[0], range.lower[1], range.lower[2]),
               cv::Scalar(range.upper[0], range.upper[1], range.upper[2]), mask);
-  cv::morphologyEx(mask, mask, cv::MORPH_OPEN, kernel, cv::Point(-1, -1), 2);
+}
+
+/// The real node's mask → contour steps (opening, dilation, distance-transform threshold, contours).
+std::vector<std::vector<cv::Point>> contours_of(const cv::Mat& colour_mask) {
+  static const cv::Mat kernel = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(3, 3));
+  cv::Mat mask;
+  cv::morphologyEx(colour_mask, mask, cv::MORPH_OPEN, kernel, cv::Point(-1, -1), 2);
   if (cv::countNonZero(mask) == 0) return {};  // nothing of this colour: the remaining steps find no contour
   cv::dilate(mask, mask, kernel);
   cv::Mat distance;
@@ -66,35 +71,72 @@ std::vector<std::vector<cv::Point>> contours_of(const cv::Mat& small_hsv, const 
   return contours;
 }
 
-/// BGR → HSV, then a bilinear resize to `size` (the real node's order). Bilinear interpolation reads only the two
-/// source rows around each destination row, so only those rows (with a one-row margin) are converted; the others
-/// stay zero and are never read. The result is identical to converting the whole image.
-cv::Mat downsampled_hsv(const cv::Mat& bgr, cv::Size size) {
-  std::vector<char> needed(static_cast<std::size_t>(bgr.rows), 0);
-  const double scale_y = static_cast<double>(bgr.rows) / size.height;
-  for (int dy = 0; dy < size.height; ++dy) {
-    // OpenCV computes the source row in single precision; mark the rows of both roundings.
+bool same_pixels(const cv::Mat& a, const cv::Mat& b) {
+  if (a.size() != b.size() || a.type() != b.type()) return false;
+  for (int row = 0; row < a.rows; ++row) {
+    if (std::memcmp(a.ptr(row), b.ptr(row), static_cast<std::size_t>(a.cols) * a.elemSize()) != 0) return false;
+  }
+  return true;
+}
+
+std::uint64_t hash_of(const cv::Mat& mask) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  for (int row = 0; row < mask.rows; ++row) {
+    const auto* p = mask.ptr<unsigned char>(row);
+    const std::size_t bytes = static_cast<std::size_t>(mask.cols) * mask.elemSize();
+    std::size_t i = 0;
+    for (; i + 8 <= bytes; i += 8) {
+      std::uint64_t word;
+      std::memcpy(&word, p + i, 8);
+      h = (h ^ word) * 0x100000001b3ULL;
+      h ^= h >> 29;
+    }
+    for (; i < bytes; ++i) h = (h ^ p[i]) * 0x100000001b3ULL;
+  }
+  return h;
+}
+
+/// Contours of the masks this thread segmented recently (every episode starts with the same few backgrounds):
+/// a mask seen before is not segmented again. Contours are a pure function of the mask, so this changes nothing.
+class MaskMemo {
+ public:
+  const std::vector<std::vector<cv::Point>>* find(std::uint64_t hash, const cv::Mat& mask) const {
+    for (const auto& e : entries_) {
+      if (e.hash == hash && same_pixels(e.mask, mask)) return &e.contours;
+    }
+    return nullptr;
+  }
+  void add(std::uint64_t hash, const cv::Mat& mask, const std::vector<std::vector<cv::Point>>& contours) {
+    Entry& e = entries_.size() < kCapacity ? entries_.emplace_back() : entries_[next_++ % kCapacity];
+    e.hash = hash;
+    mask.copyTo(e.mask);
+    e.contours = contours;
+  }
+
+ private:
+  static constexpr std::size_t kCapacity = 32;
+  struct Entry {
+    std::uint64_t hash = 0;
+    cv::Mat mask;
+    std::vector<std::vector<cv::Point>> contours;
+  };
+  std::vector<Entry> entries_;
+  std::size_t next_ = 0;
+};
+
+/// The source rows a bilinear resize from `rows` to `height` reads. OpenCV computes the source row in single
+/// precision; the rows of both roundings are marked (with a one-row margin).
+std::vector<char> rows_read_by_resize(int rows, int height) {
+  std::vector<char> needed(static_cast<std::size_t>(rows), 0);
+  const double scale_y = static_cast<double>(rows) / height;
+  for (int dy = 0; dy < height; ++dy) {
     const int sy_double = static_cast<int>(std::floor((dy + 0.5) * scale_y - 0.5));
     const int sy_float = static_cast<int>(std::floor(static_cast<float>((dy + 0.5) * scale_y - 0.5)));
     for (const int sy : {sy_double, sy_float}) {
-      for (int y = sy; y <= sy + 1; ++y) needed[static_cast<std::size_t>(std::clamp(y, 0, bgr.rows - 1))] = 1;
+      for (int y = sy; y <= sy + 1; ++y) needed[static_cast<std::size_t>(std::clamp(y, 0, rows - 1))] = 1;
     }
   }
-  cv::Mat hsv = cv::Mat::zeros(bgr.size(), CV_8UC3);
-  for (int y = 0; y < bgr.rows;) {
-    if (!needed[static_cast<std::size_t>(y)]) {
-      ++y;
-      continue;
-    }
-    int end = y;
-    while (end < bgr.rows && needed[static_cast<std::size_t>(end)]) ++end;
-    cv::Mat rows = hsv.rowRange(y, end);
-    cv::cvtColor(bgr.rowRange(y, end), rows, cv::COLOR_BGR2HSV);
-    y = end;
-  }
-  cv::Mat small;
-  cv::resize(hsv, small, size, 0, 0, cv::INTER_LINEAR);
-  return small;
+  return needed;
 }
 
 }  // namespace
@@ -115,6 +157,29 @@ std::array<unsigned char, 3> zone_marker_rgb(std::string_view colour) {
 }
 
 ZoneMap ZoneMap::segment(const cv::Mat& bgr, double metres_per_pixel) {
+  return ZoneSegmenter().segment(bgr, metres_per_pixel);
+}
+
+// BGR → HSV, then a bilinear resize (the real node's order). Bilinear interpolation reads only the two source rows
+// around each destination row, so only those rows are converted; the others stay zero and are never read. The
+// result is identical to converting the whole image.
+void ZoneSegmenter::convert_rows(const cv::Mat& bgr, const cv::Rect& region) {
+  for (int y = region.y; y < region.y + region.height;) {
+    if (!needed_[static_cast<std::size_t>(y)]) {
+      ++y;
+      continue;
+    }
+    int end = y;
+    while (end < region.y + region.height && needed_[static_cast<std::size_t>(end)]) ++end;
+    const cv::Range rows(y, end);
+    const cv::Range cols(region.x, region.x + region.width);
+    cv::Mat target = hsv_(rows, cols);
+    cv::cvtColor(bgr(rows, cols), target, cv::COLOR_BGR2HSV);
+    y = end;
+  }
+}
+
+ZoneMap ZoneSegmenter::segment(const cv::Mat& bgr, double metres_per_pixel, std::optional<cv::Rect> changed) {
   if (bgr.empty()) throw InputError("the image is empty", "image", "a BGR CV_8UC3 image");
   if (bgr.type() != CV_8UC3) {
     throw InputError("the image has OpenCV type " + std::to_string(bgr.type()), "image", "a BGR CV_8UC3 image");
@@ -124,14 +189,40 @@ ZoneMap ZoneMap::segment(const cv::Mat& bgr, double metres_per_pixel) {
   }
   const int small_height =
       std::max(1, static_cast<int>(std::lround(static_cast<double>(bgr.rows) * kZoneSegmentationWidthPx / bgr.cols)));
-  const cv::Mat small = downsampled_hsv(bgr, cv::Size(kZoneSegmentationWidthPx, small_height));
+  const cv::Rect whole(0, 0, bgr.cols, bgr.rows);
+  if (hsv_.size() != bgr.size()) {
+    hsv_ = cv::Mat::zeros(bgr.size(), CV_8UC3);
+    needed_ = rows_read_by_resize(bgr.rows, small_height);
+    changed = whole;
+  }
+  convert_rows(bgr, changed ? (*changed & whole) : whole);
+  cv::resize(hsv_, small_hsv_, cv::Size(kZoneSegmentationWidthPx, small_height), 0, 0, cv::INTER_LINEAR);
   const double scale_x = static_cast<double>(bgr.cols) / kZoneSegmentationWidthPx;
   const double scale_y = static_cast<double>(bgr.rows) / small_height;
+  ++counters_.images;
 
   ZoneMap map;
-  for (const auto& entry : kRanges) {
+  for (std::size_t c = 0; c < kRanges.size(); ++c) {
+    const auto& entry = kRanges[c];
+    auto& cached = cache_[c];
+    mask_of(small_hsv_, entry.range, mask_);
+    if (same_pixels(mask_, cached.mask)) {
+      ++counters_.masks_reused;
+    } else {
+      thread_local MaskMemo memo;
+      mask_.copyTo(cached.mask);
+      const std::uint64_t hash = hash_of(cached.mask);
+      if (const auto* known = memo.find(hash, cached.mask)) {
+        ++counters_.masks_reused;
+        cached.contours = *known;
+      } else {
+        ++counters_.masks_recomputed;
+        cached.contours = contours_of(cached.mask);
+        memo.add(hash, cached.mask, cached.contours);
+      }
+    }
     int id = 0;
-    for (const auto& contour : contours_of(small, entry.range)) {
+    for (const auto& contour : cached.contours) {
       Zone zone;
       zone.colour = std::string(entry.colour);
       zone.id = id++;

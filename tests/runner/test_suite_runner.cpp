@@ -1,9 +1,11 @@
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <set>
 
 #include "freeplay/core/atomic_file.hpp"
+#include "freeplay/core/error.hpp"
 #include "freeplay/core/rng.hpp"
 #include "freeplay/runner/run_folder.hpp"
 #include "freeplay/runner/suite_runner.hpp"
@@ -117,4 +119,47 @@ TEST(SuiteRunner, EpisodeSeedsDependOnScenarioSeedAndIndexOnly) {
   EXPECT_EQ(episode_seed(3, 5), episode_seed(3, 5));
   EXPECT_NE(episode_seed(3, 5), episode_seed(3, 6));
   EXPECT_NE(episode_seed(3, 5), episode_seed(4, 5));
+}
+
+// --events: all writes the logs, gz writes them gzip-compressed (same bytes once unpacked), none writes none, and
+// auto keeps them for a run this small.
+TEST(SuiteRunner, EventsOutputKeepsCompressesOrDropsTheEventLogs) {
+  const auto dir = fresh_dir("runner_events");
+  const auto suite = two_variant_suite(dir);
+  std::atomic<bool> stop{false};
+  const auto run = [&](EventsOutput events, const std::string& name) {
+    auto o = options(1, dir / name);
+    o.events = events;
+    run_suite(suite, o, fake_episode, stop);
+    return dir / name;
+  };
+  EXPECT_EQ(read_file(run(EventsOutput::All, "all") / "events/cc-0003.jsonl"), "{}\n");
+  EXPECT_TRUE(std::filesystem::exists(run(EventsOutput::Auto, "auto") / "events/cr-0004.jsonl"));
+  const auto gz = run(EventsOutput::Gz, "gz");
+  EXPECT_FALSE(std::filesystem::exists(gz / "events/cc-0003.jsonl"));
+  const auto unpacked = dir / "unpacked.jsonl";
+  ASSERT_EQ(std::system(("gzip -dc " + (gz / "events/cc-0003.jsonl.gz").string() + " > " + unpacked.string()).c_str()), 0);
+  EXPECT_EQ(read_file(unpacked), "{}\n");
+  const auto none = run(EventsOutput::None, "none");
+  EXPECT_FALSE(std::filesystem::exists(none / "events"));
+  EXPECT_EQ(episodes_of(none), episodes_of(dir / "all"));  // the records do not depend on the event logs
+  EXPECT_EQ(events_output_from_name("gz"), EventsOutput::Gz);
+  EXPECT_THROW(events_output_from_name("zip"), InputError);
+}
+
+// The run folder streams its records from disk: the visitor sees what records() returns, in file order.
+TEST(SuiteRunner, RunFolderStreamsItsRecords) {
+  const auto dir = fresh_dir("runner_stream");
+  const auto suite = two_variant_suite(dir);
+  std::atomic<bool> stop{false};
+  run_suite(suite, options(2, dir / "run"), fake_episode, stop);
+  const RunFolder folder(dir / "run");
+  std::vector<nlohmann::json> seen;
+  folder.for_each_record([&](const nlohmann::json& r) { seen.push_back(r); });
+  EXPECT_EQ(folder.record_count(), 12u);
+  EXPECT_EQ(seen, folder.records());
+  EXPECT_EQ(seen.front()["variant"], "cc");
+  EXPECT_EQ(seen.front()["episode"], 0);
+  EXPECT_EQ(seen.back()["variant"], "cr");
+  EXPECT_EQ(seen.back()["episode"], 4);
 }

@@ -343,6 +343,28 @@ std::vector<std::uint64_t> scripted_session(std::uint64_t seed) {
   return hashes;
 }
 
+// A 10 Hz tick without input recomputes no raster: no background copy, no zone segmentation.
+TEST(Sandtray, TicksWithoutInputRecomputeNoRaster) {
+  auto tray = make_tray(12);
+  tray->signal(Signal::StartFreeplay);
+  tray->step(1.0);
+  const auto before = tray->zone_counters();
+  const auto version = tray->background_version();
+  for (int tick = 0; tick < 50; ++tick) tray->step(0.1);
+  EXPECT_EQ(tray->background_version(), version);
+  EXPECT_EQ(tray->zone_counters().images, before.images);
+  EXPECT_EQ(tray->zone_counters().masks_recomputed, before.masks_recomputed);
+  // A stroke changes the background: one more segmentation at the next 4 Hz poll, reusing unchanged masks.
+  tray->select_colour(PaletteColour::Red);
+  tray->touch_down(1, {0.30, -0.15});
+  tray->touch_move(1, {0.34, -0.16});
+  tray->touch_up(1);
+  for (int tick = 0; tick < 5; ++tick) tray->step(0.1);
+  EXPECT_EQ(tray->background_version(), version + 1);
+  EXPECT_EQ(tray->zone_counters().images, before.images + 1);
+  EXPECT_GT(tray->zone_counters().masks_reused, before.masks_reused);
+}
+
 TEST(Sandtray, IdenticalInputsGiveIdenticalStateHashes) {
   EXPECT_EQ(scripted_session(21), scripted_session(21));
   const auto a = scripted_session(21);

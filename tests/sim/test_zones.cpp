@@ -230,3 +230,47 @@ TEST(Zones, RowSkippingEqualsTheFullResolutionPipeline) {
 
 }  // namespace
 }  // namespace freeplay::sim
+
+namespace freeplay::sim {
+namespace {
+
+bool same_zones(const ZoneMap& a, const ZoneMap& b) {
+  if (a.zones().size() != b.zones().size()) return false;
+  for (std::size_t i = 0; i < a.zones().size(); ++i) {
+    const auto& x = a.zones()[i];
+    const auto& y = b.zones()[i];
+    if (x.colour != y.colour || x.id != y.id || x.polygon != y.polygon || x.area_m2 != y.area_m2) return false;
+  }
+  return true;
+}
+
+// The incremental segmenter reuses unchanged colour masks and still gives exactly the from-scratch zones.
+TEST(ZoneSegmenter, ReusesUnchangedMasksAndMatchesAFullSegmentation) {
+  DrawingCanvas canvas(960);
+  canvas.set_background(BackgroundKind::FreeplayMap);
+  const double scale = kScreenWidthM / canvas.width_px();
+  ZoneSegmenter segmenter;
+  EXPECT_TRUE(same_zones(segmenter.segment(canvas.image(), scale), ZoneMap::segment(canvas.image(), scale)));
+  const auto first = segmenter.counters();
+  EXPECT_EQ(first.masks_recomputed + first.masks_reused, kZoneColours.size());
+  // The same image again: nothing is recomputed.
+  EXPECT_TRUE(same_zones(segmenter.segment(canvas.image(), scale), ZoneMap::segment(canvas.image(), scale)));
+  EXPECT_EQ(segmenter.counters().masks_recomputed, first.masks_recomputed);
+  EXPECT_EQ(segmenter.counters().masks_reused, first.masks_reused + kZoneColours.size());
+  // A second segmenter on this thread finds every mask in the memo.
+  ZoneSegmenter again;
+  EXPECT_TRUE(same_zones(again.segment(canvas.image(), scale), ZoneMap::segment(canvas.image(), scale)));
+  EXPECT_EQ(again.counters().masks_recomputed, 0u);
+  // Red strokes: the red mask (and the masks of what they cover) change, the others are reused.
+  for (int k = 0; k < 4; ++k) {
+    scribble(canvas, k % 2 == 0 ? PaletteColour::Red : PaletteColour::Blue, Vec2(0.1 + 0.1 * k, -0.15), 0.06);
+    EXPECT_TRUE(same_zones(segmenter.segment(canvas.image(), scale), ZoneMap::segment(canvas.image(), scale)))
+        << "after stroke " << k;
+  }
+  EXPECT_EQ(segmenter.counters().images, 6u);
+  EXPECT_GT(segmenter.counters().masks_reused, kZoneColours.size());
+  EXPECT_LT(segmenter.counters().masks_recomputed, 6 * kZoneColours.size());
+}
+
+}  // namespace
+}  // namespace freeplay::sim

@@ -17,7 +17,12 @@ struct GridSearchResult {
   std::uint64_t expanded = 0;      ///< nodes taken from the open list
 };
 
-/// 8-connected A* with step cost = cost of the entered cell; may leave the map by `outside_margin_cells`.
+/// Expansions the A* budget grants per second of `time_budget_s` (a deterministic stand-in for wall time, about
+/// what one core of the project's machine expands per second), so a plan never depends on the machine's load.
+inline constexpr double kAStarExpansionsPerBudgetSecond = 1.0e7;
+
+/// 8-connected A* with step cost = cost of the entered cell; may leave the map by `outside_margin_cells`. Stops
+/// (timed_out) after time_budget_s × kAStarExpansionsPerBudgetSecond expansions; it reads no clock.
 GridSearchResult astar_search(const OccupancyGrid& grid, const Cell& start, const Cell& goal,
                               AStarHeuristic heuristic, int outside_margin_cells, double time_budget_s);
 

@@ -2,17 +2,21 @@
 // The output folder of a run: episodes.jsonl (one record per finished episode), per-episode files, summaries.
 // Every file appears whole; an interrupted run keeps its finished episodes and resumes where it stopped.
 
+#include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 namespace freeplay::runner {
 
-/// The run folder of a suite; safe to share between worker threads.
+/// The run folder of a suite; safe to share between worker threads. Memory does not grow with the records: it keeps
+/// only an index (variant, episode, configuration hash) and reads episodes.jsonl from disk when asked.
 class RunFolder {
  public:
   /// Opens or creates `dir`; reads the finished episodes of an earlier, interrupted run (a torn last line of
@@ -26,8 +30,12 @@ class RunFolder {
   bool finished(const std::string& variant, int index, std::uint64_t config_hash) const;
   /// Appends one finished episode's record (needs "variant", "episode", "config_hash"), durable on return.
   void append(const nlohmann::json& record);
-  /// Every finished record (earlier and this run), in completion order.
+  /// Every finished record (earlier and this run), in file order (completion order until finalize).
   std::vector<nlohmann::json> records() const;
+  /// Calls `visit` with each finished record in file order, parsing one line at a time (constant memory).
+  void for_each_record(const std::function<void(const nlohmann::json&)>& visit) const;
+  /// Number of finished records.
+  std::size_t record_count() const;
   /// Rewrites episodes.jsonl sorted by variant (in `variant_order`) and episode index, atomically.
   void finalize(const std::vector<std::string>& variant_order);
   /// Writes `relative` inside the folder atomically (e.g. "events/cc-0003.jsonl").
@@ -43,8 +51,12 @@ class RunFolder {
  private:
   std::filesystem::path dir_;
   mutable std::mutex mutex_;
-  std::vector<nlohmann::json> records_;
+  std::unordered_map<std::string, std::uint64_t> finished_;  // "<variant>\n<episode>" → configuration hash
+  std::size_t records_ = 0;
   bool dropped_partial_ = false;
 };
+
+/// `contents` compressed in the gzip format (zlib, default level), readable with `zcat`.
+std::string gzip_compress(std::string_view contents);
 
 }  // namespace freeplay::runner

@@ -9,6 +9,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "freeplay/runner/suite.hpp"
@@ -27,10 +28,23 @@ struct EpisodeTask {
   const SuiteVariant* variant = nullptr;  ///< which variant
   int index = 0;                          ///< episode index within the variant
   std::uint64_t seed = 0;                 ///< the episode's root seed
+  bool events = true;                     ///< the run keeps event logs (the episode may skip writing them)
 };
 
 /// Runs one episode; must return promptly with `std::nullopt`-like empty record when `stop` becomes true.
 using EpisodeFunction = std::function<EpisodeOutput(const EpisodeTask& task, const std::atomic<bool>& stop)>;
+
+/// What a run keeps of each episode's event log (`--events`).
+enum class EventsOutput {
+  Auto,  ///< All up to kAutoEventsMaxEpisodes episodes in the shard, None above (sweeps at scale)
+  All,   ///< events/<episode>.jsonl
+  Gz,    ///< events/<episode>.jsonl.gz (gzip, zlib)
+  None,  ///< no event log (episodes.jsonl and annotations only)
+};
+/// Shards of more episodes than this keep no event logs under EventsOutput::Auto.
+inline constexpr int kAutoEventsMaxEpisodes = 1000;
+/// EventsOutput from "auto", "all", "gz" or "none"; throws InputError listing them.
+EventsOutput events_output_from_name(std::string_view name);
 
 /// Options of a run.
 struct RunOptions {
@@ -40,6 +54,7 @@ struct RunOptions {
   int shard_index = 0;              ///< this shard (0-based)
   int shard_count = 1;              ///< number of shards
   std::string title;                ///< heading of summary.md
+  EventsOutput events = EventsOutput::Auto;  ///< what to keep of the event logs
 };
 
 /// What a run did.

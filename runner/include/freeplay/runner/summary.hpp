@@ -48,6 +48,26 @@ struct VariantSummary {
   std::vector<MetricSummary> metrics;  ///< sorted by name
 };
 
+/// Builds the variant summaries one record at a time (for episodes.jsonl streamed from disk): it keeps the numbers
+/// it summarises, never the records.
+class RunSummarizer {
+ public:
+  /// Summaries of the variants in `variant_order` (others are ignored).
+  explicit RunSummarizer(const std::vector<std::string>& variant_order);
+  /// Takes one episode record.
+  void add(const nlohmann::json& record);
+  /// The summaries of the variants with at least one episode, in `variant_order`.
+  std::vector<VariantSummary> finish() const;
+
+ private:
+  struct Variant {
+    VariantSummary summary;
+    std::map<std::string, std::vector<double>> values;
+  };
+  std::vector<Variant> variants_;
+  std::map<std::string, std::size_t> index_;
+};
+
 /// Groups records by variant (in `variant_order`) and summarises `duration_s` and every numeric `metrics.*`.
 std::vector<VariantSummary> summarize_run(const std::vector<nlohmann::json>& records,
                                           const std::vector<std::string>& variant_order);

@@ -51,5 +51,7 @@ cv::Mat render_map(const MapDescription& map, int width_px);
 /// Renders a background `width_px` wide: BGR CV_8UC3, height = round(width × 0.335 / 0.6); throws InputError on
 /// a width outside [16, 16384]. The map comes from `assets/backgrounds/freeplay_map.yaml`.
 cv::Mat render_background(BackgroundKind kind, int width_px);
+/// The same image shared with every other caller (rasterised once per process): never write into it.
+cv::Mat shared_background(BackgroundKind kind, int width_px);
 
 }  // namespace freeplay::sim

@@ -40,7 +40,12 @@ class DrawingCanvas {
   /// True when the image changed since the last mark_published().
   bool dirty() const { return dirty_; }
   /// Records that the current image was published.
-  void mark_published() { dirty_ = false; }
+  void mark_published() {
+    dirty_ = false;
+    unpublished_ = {};
+  }
+  /// Bounding box of every pixel changed since the last mark_published() (empty when none).
+  const cv::Rect& unpublished_rect() const { return unpublished_; }
   /// Fraction of pixels that differ from the bare background (0…1).
   double coverage() const;
   /// 64-bit hash of the image pixels (and background kind); equal images give equal hashes.
@@ -61,7 +66,7 @@ class DrawingCanvas {
     cv::Point2d last_mid;    // end of what is drawn so far (pixels)
   };
   void paint_path(const std::vector<cv::Point2d>& path, PaletteColour colour);
-  void touch();
+  void touch(const cv::Rect& changed);
 
   BackgroundKind kind_ = BackgroundKind::Blank;
   cv::Mat background_;
@@ -69,6 +74,7 @@ class DrawingCanvas {
   int stroke_width_px_;
   std::map<int, Stroke> strokes_;
   bool dirty_ = true;
+  cv::Rect unpublished_;
   mutable std::optional<std::uint64_t> hash_cache_;
 };
 

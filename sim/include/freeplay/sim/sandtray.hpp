@@ -24,6 +24,7 @@ namespace freeplay::sim {
 
 class ItemCatalogue;
 class ZoneMap;
+struct ZoneSegmenterCounters;
 
 /// Box2D length units per metre inside the sandtray world: the real game's qml-box2d scale (32 px per unit at
 /// 0.0003125 m/px = 1 cm per unit), so items are 2.4–8.4 units, inside Box2D's tuned 0.1–10 range.
@@ -166,6 +167,8 @@ class Sandtray {
   std::uint64_t background_version() const;
   /// Colour zones of the last published background.
   const ZoneMap& zones() const;
+  /// Work the zone segmentation did so far (images segmented, colour masks recomputed or reused).
+  const ZoneSegmenterCounters& zone_counters() const;
   /// The whole screen (background, strokes, items, stash, robot hand) at `width_px` wide.
   cv::Mat render_screen(int width_px = kScreenWidthPx) const;
   /// Events since the last call (e.g. `releasing_<item>`), emptied by the call.

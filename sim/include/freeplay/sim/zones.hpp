@@ -3,6 +3,8 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -39,6 +41,15 @@ std::array<unsigned char, 3> zone_marker_rgb(std::string_view colour);
 /// Width the real node downsamples the image to before segmenting (pixels).
 inline constexpr int kZoneSegmentationWidthPx = 200;
 
+/// Counts of the work a ZoneSegmenter did (for tests and benchmarks).
+struct ZoneSegmenterCounters {
+  std::uint64_t images = 0;            ///< images segmented
+  std::uint64_t masks_recomputed = 0;  ///< colour masks segmented (new to this segmenter and its thread's memo)
+  std::uint64_t masks_reused = 0;      ///< colour masks unchanged since the last image, or seen before: reused
+};
+
+class ZoneSegmenter;
+
 /// The zones of one background image (immutable once built).
 class ZoneMap {
  public:
@@ -58,7 +69,38 @@ class ZoneMap {
   std::size_t count(std::string_view colour) const;
 
  private:
+  friend class ZoneSegmenter;
   std::vector<Zone> zones_;
+};
+
+/// Segments a sequence of backgrounds, redoing a colour's morphology, distance transform and contours only when
+/// that colour's mask changed since the previous image (a stroke usually changes one or two of the seven masks) and
+/// is not among the masks its thread segmented recently. The zones are identical to ZoneMap::segment's.
+class ZoneSegmenter {
+ public:
+  /// Counts of the work done so far.
+  using Counters = ZoneSegmenterCounters;
+
+  /// Same checks and result as ZoneMap::segment. With `changed`, the caller promises that `bgr` differs from the
+  /// previous image only inside that rectangle, and only those pixels are converted to HSV again.
+  ZoneMap segment(const cv::Mat& bgr, double metres_per_pixel, std::optional<cv::Rect> changed = std::nullopt);
+  /// Work done so far.
+  const Counters& counters() const { return counters_; }
+
+ private:
+  struct Cached {
+    cv::Mat mask;                                  // the colour's inRange mask of the previous image
+    std::vector<std::vector<cv::Point>> contours;  // its contours (small-image pixels)
+  };
+  /// Converts the rows of `bgr` that the bilinear downsampling reads (inside `region`) into hsv_.
+  void convert_rows(const cv::Mat& bgr, const cv::Rect& region);
+
+  std::array<Cached, kZoneColours.size()> cache_;
+  cv::Mat hsv_;                 // full-size HSV image; only the rows the downsampling reads are kept up to date
+  std::vector<char> needed_;    // rows of hsv_ the downsampling reads
+  cv::Mat small_hsv_;
+  cv::Mat mask_;
+  Counters counters_;
 };
 
 }  // namespace freeplay::sim
