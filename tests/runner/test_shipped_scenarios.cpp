@@ -35,9 +35,9 @@ TEST(ShippedScenarios, BaselinesHavePInSoRoSessionCounts) {
   ASSERT_EQ(suite.variants.size(), 3u);
   EXPECT_EQ(suite.variants[0].scenario.condition, "child-child");
   EXPECT_EQ(suite.variants[0].scenario.episodes, 45);
-  EXPECT_EQ(suite.variants[1].scenario.policy, "asocial");
+  EXPECT_EQ(suite.variants[1].scenario.robot.policy, "asocial");
   EXPECT_EQ(suite.variants[1].scenario.episodes, 30);
-  EXPECT_EQ(suite.variants[2].scenario.policy, "social");
+  EXPECT_EQ(suite.variants[2].scenario.robot.policy, "social");
   EXPECT_EQ(suite.variants[2].scenario.episodes, 30);
   // Common random numbers: both robot conditions share the seed, hence the same synthetic children.
   EXPECT_EQ(suite.variants[1].scenario.seed, suite.variants[2].scenario.seed);
