@@ -43,6 +43,10 @@ struct RegisterLister {
   }
 };
 
+/// Parses the command line against every registered subcommand and runs it; returns the exit status (2 on bad
+/// input, with the error on stderr).
+int run_program(int argc, char** argv);
+
 /// Exit status for a failure that is not bad input (e.g. no path found): makes CLI11 exit with `code`.
 [[noreturn]] inline void fail_with(int code) { throw CLI::RuntimeError(code); }
 

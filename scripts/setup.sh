@@ -18,6 +18,7 @@ packages=(
   python3-rosmaster python3-rostopic python3-actionlib python3-tf2-msgs python3-sensor-msgs python3-geometry-msgs
   python3-visualization-msgs python3-actionlib-msgs python3-nav-msgs
   zlib1g-dev linux-perf valgrind
+  clang libclang-rt-14-dev
 )
 for arg in "$@"; do
   case "$arg" in

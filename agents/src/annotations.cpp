@@ -44,7 +44,8 @@ ChildTimeline read_child(const YAML::Node& list, const std::string& file, const 
       throw InputError("expected a single-key map '<label>: [start, stop]'", path, "", where(file, entry));
     }
     const auto kv = *entry.begin();
-    const std::string label = kv.first.as<std::string>();
+    if (!kv.first.IsScalar()) throw InputError("a label must be a name", path, "", where(file, kv.first));
+    const std::string label = kv.first.Scalar();
     if (label == "?") continue;  // the annotator's conflict placeholder carries no state
     const auto parsed = parse_label(label);
     if (!parsed) {
@@ -85,13 +86,15 @@ SessionAnnotations parse_pinsoro_yaml(std::string_view yaml_text, const std::str
   YAML::Node root;
   try {
     root = YAML::Load(std::string(yaml_text));
-  } catch (const YAML::ParserException& e) {
-    throw InputError(e.msg, "", "", SourceLocation{file, e.mark.line + 1, e.mark.column + 1});
+  } catch (const YAML::Exception& e) {  // syntax errors, unknown aliases, nesting too deep
+    throw InputError(e.msg, "", "", SourceLocation{file, e.mark.is_null() ? 0 : e.mark.line + 1,
+                                                   e.mark.is_null() ? 0 : e.mark.column + 1});
   }
   if (!root.IsMap()) throw InputError("expected a map with 'purple' and/or 'yellow'", "", "purple, yellow", where(file, root));
   SessionAnnotations result;
   for (const auto& entry : root) {
-    const std::string key = entry.first.as<std::string>();
+    if (!entry.first.IsScalar()) throw InputError("a key must be a name", "", "purple, yellow", where(file, entry.first));
+    const std::string key = entry.first.Scalar();
     if (key == "purple") {
       result.purple = read_child(entry.second, file, key, time_base);
     } else if (key == "yellow") {

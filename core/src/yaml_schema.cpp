@@ -37,13 +37,16 @@ SourceLocation location_of(const YAML::Node& node, const std::string& file) {
 YamlDocument parse_yaml(const std::string& text, const std::string& file) {
   try {
     return {file, YAML::Load(text)};
-  } catch (const YAML::ParserException& e) {
+  } catch (const YAML::Exception& e) {  // syntax errors, unknown aliases, nesting too deep
+    const bool located = !e.mark.is_null();
     throw InputError(fmt::format("YAML syntax error: {}", e.msg), {}, {},
-                     {file, e.mark.line + 1, e.mark.column + 1});
+                     {file, located ? e.mark.line + 1 : 0, located ? e.mark.column + 1 : 0});
   }
 }
 
 YamlDocument load_yaml_file(const std::filesystem::path& path) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) throw InputError("is a folder, not a file", {}, {}, {path.string()});
   std::ifstream in(path);
   if (!in) throw InputError("cannot open file", {}, {}, {path.string(), 0, 0});
   std::ostringstream text;
@@ -169,7 +172,12 @@ void Schema::validate(YAML::Node node, const std::string& path, const std::strin
     case Kind::Map: {
       if (!node.IsMap()) return wrong(fmt::format("expected a map, found {}", kind_name(node)));
       for (auto it = node.begin(); it != node.end(); ++it) {
-        const auto key = it->first.as<std::string>();
+        if (!it->first.IsScalar()) {
+          errors.add(InputError(fmt::format("a key must be a name, found {}", kind_name(it->first)), path,
+                                "name: value", location_of(it->first, file)));
+          continue;
+        }
+        const auto key = it->first.Scalar();
         if (element_) {
           element_->validate(it->second, join_path(path, key), file, errors);
           continue;
@@ -289,8 +297,12 @@ std::vector<std::string> split_key_path(const std::string& key_path) {
   return parts;
 }
 
-bool is_index(const std::string& s) {
-  return !s.empty() && s.find_first_not_of("0123456789") == std::string::npos;
+/// The list index `s` names, or nullopt when it is not a decimal number below `size`.
+std::optional<std::size_t> index_in(const std::string& s, std::size_t size) {
+  if (s.empty() || s.size() > 9 || s.find_first_not_of("0123456789") != std::string::npos) return std::nullopt;
+  const auto index = static_cast<std::size_t>(std::stoul(s));
+  if (index >= size) return std::nullopt;
+  return index;
 }
 
 }  // namespace
@@ -306,7 +318,7 @@ void apply_override(YAML::Node root, const std::string& assignment, const std::s
   YAML::Node value;
   try {
     value = YAML::Load(assignment.substr(eq + 1));
-  } catch (const YAML::ParserException& e) {
+  } catch (const YAML::Exception& e) {
     throw InputError(fmt::format("value of '{}' is not valid YAML: {}", key_path, e.msg), origin);
   }
   YAML::Node node = root;
@@ -316,15 +328,16 @@ void apply_override(YAML::Node root, const std::string& assignment, const std::s
     const bool last = i + 1 == parts.size();
     walked = walked.empty() ? part : walked + "." + part;
     if (node.IsSequence()) {
-      if (!is_index(part) || std::stoul(part) >= node.size()) {
+      const auto index = index_in(part, node.size());
+      if (!index) {
         throw InputError(fmt::format("'{}' is not an index of the list at '{}'", part, walked), origin,
                          fmt::format("0…{}", node.size() == 0 ? 0 : node.size() - 1));
       }
       if (last) {
-        node[std::stoul(part)] = value;
+        node[*index] = value;
         return;
       }
-      node.reset(node[std::stoul(part)]);
+      node.reset(node[*index]);
       continue;
     }
     if (!node.IsMap() && !node.IsNull() && node.IsDefined()) {

@@ -504,7 +504,7 @@ void BagRecorder::begin(const runner::EpisodeInfo& info) {
     msg::String scenario;
     scenario.data = ros_string(YAML::Dump(info.scenario->source));
     d.put(topics::kScenario, 0.0, scenario, true);
-    if (info.scenario->condition == "child-robot") d.nao_links = std::make_unique<NaoLinkFrames>(info.scenario->arm_reach_m);
+    if (info.scenario->condition == "child-robot") d.nao_links = std::make_unique<NaoLinkFrames>(info.scenario->robot.arm_reach_m);
   }
   msg::String episode;
   episode.data = ros_string(nlohmann::json{{"id", d.id}, {"seed", d.seed}, {"scenario", d.scenario_name}}.dump());

@@ -220,7 +220,7 @@ class ControllerEpisode {
   static std::shared_ptr<const stage::StageModel> make_stage_model(const Scenario& scenario) {
     stage::StageConfig config;
     config.scene = stage::SceneKind::child_robot;
-    config.arm_reach = scenario.arm_reach_m;
+    config.arm_reach = scenario.robot.arm_reach_m;
     return stage::StageModel::create(config);
   }
 
@@ -582,7 +582,7 @@ class ControllerEpisode {
                    {"duration_s", time()},
                    {"ended_by", "sequence"},
                    {"robot_mode", spec_.mode},
-                   {"planner", scenario_.planner},
+                   {"planner", scenario_.planner.name},
                    {"controller", {{"speed_fraction", spec_.speed_fraction},
                                    {"torque_fraction", spec_.torque_fraction},
                                    {"trace_interval_steps", spec_.trace_interval_steps},

@@ -138,23 +138,23 @@ class Episode {
         child_robot_(scenario.condition == "child-robot") {
     const auto& params = *models.child_params;
     const auto population = population_of(scenario);
-    add_child("purple", agents::Seat::Bottom, 0, make_profile(scenario.purple, population, params,
+    add_child("purple", agents::Seat::Bottom, 0, make_profile(scenario.children.purple, population, params,
                                                               seeds_.stream("profile.purple")));
     if (!child_robot_) {
       add_child("yellow", agents::Seat::Top, agents::kFingersPerChild,
-                make_profile(scenario.yellow, population, params, seeds_.stream("profile.yellow")));
+                make_profile(scenario.children.yellow, population, params, seeds_.stream("profile.yellow")));
     } else {
-      policy_ = policies::make_policy(scenario.policy, scenario.policy_params);
+      policy_ = policies::make_policy(scenario.robot.policy, scenario.robot.params);
       policies::PolicyContext context;
       for (const auto& item : models.catalogue->items()) context.item_names.push_back(item.name);
       policy_->reset(context, seeds_.stream("policy"));
-      body_ = models.robot_body(scenario.robot_mode, scenario.arm_reach_m);
+      body_ = models.robot_body(scenario.robot.mode, scenario.robot.arm_reach_m);
       follower_ = std::make_unique<BodyFollower>(*body_);
       const auto disc = body_->reach();
       executor_ = make_move_executor(scenario, disc.centre, disc.radius);
       planner_rng_ = seeds_.stream("planner");
       perception_ = std::make_unique<PerceptionModel>(
-          PerceptionSettings{scenario.face_detection_rate, scenario.perception_latency_s, scenario.gaze_noise_deg},
+          scenario.perception,
           seeds_.stream("perception"));
     }
   }
@@ -244,8 +244,8 @@ class Episode {
 
  private:
   static agents::Population population_of(const Scenario& s) {
-    if (s.population == "pinsoro-cc") return agents::Population::pinsoro_child_child();
-    if (s.population == "pinsoro-cr") return agents::Population::pinsoro_child_robot();
+    if (s.children.population == "pinsoro-cc") return agents::Population::pinsoro_child_child();
+    if (s.children.population == "pinsoro-cr") return agents::Population::pinsoro_child_robot();
     return s.condition == "child-robot" ? agents::Population::pinsoro_child_robot()
                                         : agents::Population::pinsoro_child_child();
   }
@@ -976,8 +976,8 @@ class Episode {
     out.update({{"duration_s", duration},
                 {"ended_by", ended_by},
                 {"children", children},
-                {"robot_mode", child_robot_ ? scenario_.robot_mode : ""},
-                {"planner", child_robot_ ? scenario_.planner : ""},
+                {"robot_mode", child_robot_ ? scenario_.robot.mode : ""},
+                {"planner", child_robot_ ? scenario_.planner.name : ""},
                 {"metrics", metrics}});
     return out;
   }

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "freeplay/core/rng.hpp"
+#include "freeplay/core/settings_archive.hpp"
 #include "freeplay/stage/nao_description.hpp"
 
 namespace freeplay::runner {
@@ -13,36 +14,6 @@ namespace freeplay::runner {
 namespace {
 
 using S = Schema;
-
-std::shared_ptr<const Schema> child_schema() {
-  return S::map({
-      optional("age", S::integer(4, 8), "years"),
-      optional("gender", S::enumeration({"female", "male"})),
-      optional("sociability", S::number(0, 1)),
-      optional("assertiveness", S::number(0, 1)),
-      optional("attention_span", S::number(0, 1)),
-      optional("tablet_familiarity", S::integer(0, 2), "0 not familiar, 1 somewhat, 2 familiar"),
-  });
-}
-
-template <typename T>
-std::optional<T> maybe(const YAML::Node& node, const char* key) {
-  const YAML::Node& n = node;
-  if (!n[key].IsDefined() || n[key].IsNull()) return std::nullopt;
-  return n[key].as<T>();
-}
-
-ChildSpec child_from(const YAML::Node& node) {
-  ChildSpec spec;
-  if (!node.IsDefined() || node.IsNull()) return spec;
-  spec.age = maybe<int>(node, "age");
-  spec.gender = maybe<std::string>(node, "gender");
-  spec.sociability = maybe<double>(node, "sociability");
-  spec.assertiveness = maybe<double>(node, "assertiveness");
-  spec.attention_span = maybe<double>(node, "attention_span");
-  spec.tablet_familiarity = maybe<int>(node, "tablet_familiarity");
-  return spec;
-}
 
 // ---- controller scenarios (kind: controller) ----------------------------------------------------------------
 
@@ -79,22 +50,9 @@ std::shared_ptr<const Schema> controller_target_schema(const ScenarioVocabulary&
 }
 
 std::shared_ptr<const Schema> controller_schema(const ScenarioVocabulary& vocabulary) {
-  return S::map({
-      with_default("mode", S::enumeration({"dynamic", "kinematic"}), "dynamic", "robot simulation mode"),
-      with_default("speed_fraction", S::number(0.01, 50.0), "0.3",
-                   "joint speed of the commanded profile as a fraction of the Nao's velocity limits (> 1 exceeds "
-                   "them deliberately)"),
-      with_default("torque_fraction", S::number(0.01, 50.0), "0.5",
-                   "profile speed at most this fraction of each joint's effort limit / its damping (> 1 exceeds the "
-                   "motors' efforts deliberately)"),
-      with_default("trace_interval_steps", S::integer(1, 1000000), "50", "golden-trace checkpoint every N steps"),
-      with_default("settle_tolerance_m", S::number(1e-5, 0.1), "0.003"),
-      with_default("settle_tolerance_rad", S::number(1e-5, 1.0), "0.01"),
-      with_default("settle_speed_rad_s", S::number(1e-4, 10.0), "0.05"),
-      with_default("hold_s", S::number(0.0, 60.0), "0.2", "time held at a target once settled"),
-      with_default("timeout_s", S::number(0.1, 600.0), "5", "longest time spent on one target"),
-      required("targets", S::list(controller_target_schema(vocabulary), 1), "the target sequence"),
-  });
+  auto fields = SchemaArchive::fields_of<ControllerSpec>();
+  fields.push_back(required("targets", S::list(controller_target_schema(vocabulary), 1), "the target sequence"));
+  return S::map(std::move(fields));
 }
 
 void check_kind_sections(const YAML::Node& root, const std::string& kind,
@@ -143,16 +101,7 @@ std::vector<double> numbers_of(const YAML::Node& list) {
 }
 
 ControllerSpec controller_from(const YAML::Node& node) {
-  ControllerSpec c;
-  c.mode = node["mode"].as<std::string>();
-  c.speed_fraction = node["speed_fraction"].as<double>();
-  c.torque_fraction = node["torque_fraction"].as<double>();
-  c.trace_interval_steps = node["trace_interval_steps"].as<int>();
-  c.settle_tolerance_m = node["settle_tolerance_m"].as<double>();
-  c.settle_tolerance_rad = node["settle_tolerance_rad"].as<double>();
-  c.settle_speed_rad_s = node["settle_speed_rad_s"].as<double>();
-  c.hold_s = node["hold_s"].as<double>();
-  c.timeout_s = node["timeout_s"].as<double>();
+  ControllerSpec c = read_settings<ControllerSpec>(node);
   for (const auto& t : node["targets"]) {
     ControllerTarget target;
     if (t["point"]) {
@@ -182,55 +131,9 @@ ControllerSpec controller_from(const YAML::Node& node) {
   return c;
 }
 
-}  // namespace
-
-std::shared_ptr<const Schema> scenario_schema(const ScenarioVocabulary& vocabulary) {
-  const auto children = S::map({
-      with_default("population", S::enumeration({"pinsoro", "pinsoro-cc", "pinsoro-cr"}), "pinsoro",
-               "population the children are sampled from"),
-      optional("purple", child_schema(), "explicit fields of the purple child's profile"),
-      optional("yellow", child_schema(), "explicit fields of the yellow child's profile (child-child)"),
-  });
-  const auto robot = S::map({
-      with_default("policy", S::enumeration(vocabulary.policies), "asocial", "play policy"),
-      with_default("params", S::dictionary(S::any()), "{}", "policy parameters"),
-      with_default("mode", S::enumeration({"kinematic", "dynamic"}), "kinematic", "robot simulation mode"),
-      with_default("arm_reach_m", S::number(0.1, 1.0), "0.5", "arm reach for the reachable disc"),
-  });
-  const auto planner = S::map({
-      with_default("name", S::enumeration(vocabulary.planners), "astar"),
-      with_default("time_budget_s", S::number(0.001, 60.0), "1.0",
-                   "wall-clock budget; only anytime planners (rrtstar, bitstar) use it up: keep it large so that "
-                   "deterministic planners never hit it on a slow machine"),
-      with_default("finger_speed_mps", S::number(0.005, 1.0), "0.05", "5 mm per 0.1 s in the real system"),
-      with_default("reject_blocked_goals", S::boolean(), "false",
-                   "refuse a goal whose cell lies inside other items' footprints; the real planner plans to any "
-                   "point (the item then lands on the others and the physics pushes them apart)"),
-  });
-  const auto perception = S::map({
-      with_default("face_detection_rate", S::number(0, 1), "0.98"),
-      with_default("latency_s", S::number(0, 5), "0.1"),
-      with_default("gaze_noise_deg", S::number(0, 90), "5"),
-  });
-  const auto protocol = S::map({
-      with_default("greeting_s", S::number(0, 3600), "300", "about 5 min in the paper's protocol"),
-      with_default("tutorial_s", S::number(0, 3600), "90", "1–2 min"),
-      with_default("freeplay_cap_s", S::number(1, 4 * 3600), "2400"),
-      with_default("debriefing_s", S::number(0, 3600), "120", "about 2 min"),
-  });
-  const auto camera = S::map({
-      required("name", S::enumeration(vocabulary.cameras)),
-      with_default("rate_hz", S::number(0.1, 60), "30"),
-      with_default("width", S::integer(16, 4096), "960"),
-      with_default("height", S::integer(16, 4096), "540"),
-      with_default("depth", S::boolean(), "false"),
-      with_default("video", S::boolean(), "false", "write videos/<episode>/<name>.mp4 (mp4v, fps = rate_hz)"),
-  });
-  const auto rendering = S::map({
-      optional("backend", S::enumeration({"osmesa", "egl"}), "GL provider; default $MUJOCO_GL, else osmesa"),
-      with_default("preset", S::enumeration({"fast", "pretty"}), "fast",
-                   "fast: no MSAA/shadows/reflections/skybox; pretty: 4x MSAA, shadows, skybox"),
-  });
+std::shared_ptr<const Schema> build_scenario_schema(const ScenarioVocabulary& vocabulary) {
+  auto record_map = std::vector<Field>{with_default("bag", S::boolean(), "true", "write the ROS bag")};
+  for (auto& f : SchemaArchive::fields_of<RecordSettings>()) record_map.push_back(std::move(f));
   return S::map({
       required("name", S::string(), "short identifier"),
       with_default("description", S::string(), "\"\""),
@@ -240,28 +143,31 @@ std::shared_ptr<const Schema> scenario_schema(const ScenarioVocabulary& vocabula
       optional("condition", S::enumeration({"child-child", "child-robot"}), "required for kind: episode"),
       with_default("episodes", S::integer(1, 1000000), "1"),
       with_default("seed", S::integer(0, std::numeric_limits<long long>::max()), "1"),
-      with_default("children", children, "{}"),
-      with_default("robot", robot, "{}"),
-      with_default("planner", planner, "{}"),
-      with_default("perception", perception, "{}"),
-      with_default("protocol", protocol, "{}"),
-      with_default("cameras", S::list(camera), "[]"),
-      with_default("rendering", rendering, "{}", "how the cameras are rendered"),
+      with_default("children", settings_schema<ChildrenSettings>(), "{}"),
+      with_default("robot", settings_schema<RobotSettings>(vocabulary), "{}"),
+      with_default("planner", settings_schema<PlannerSettings>(vocabulary), "{}"),
+      with_default("perception", settings_schema<PerceptionSettings>(), "{}"),
+      with_default("protocol", settings_schema<Protocol>(), "{}"),
+      with_default("cameras", S::list(settings_schema<CameraStream>(vocabulary)), "[]"),
+      with_default("rendering", settings_schema<RenderingSettings>(), "{}", "how the cameras are rendered"),
       with_default("record",
-                   S::one_of({S::boolean(),
-                              S::map({with_default("bag", S::boolean(), "true", "write the ROS bag"),
-                                      with_default("jpeg_quality", S::integer(1, 100), "90"),
-                                      with_default("png_level", S::integer(0, 9), "3"),
-                                      with_default("chunk_kb", S::integer(16, 1 << 20), "768"),
-                                      with_default("compression", S::enumeration({"none", "lz4", "bz2"}), "none"),
-                                      with_default("encoder_threads", S::integer(0, 64), "2",
-                                                   "threads compressing camera images (0: the episode's thread)")})},
+                   S::one_of({S::boolean(), S::map(std::move(record_map))},
                              "true, false, or a map {bag: bool, jpeg_quality: 1–100, png_level: 0–9, "
                              "chunk_kb: 16–1048576, compression: none|lz4|bz2, encoder_threads: 0–64}"),
                    "false",
                    "true, or a map {bag, jpeg_quality, png_level, chunk_kb, compression, encoder_threads} "
                    "(docs/recording.md)"),
   });
+}
+
+}  // namespace
+
+std::shared_ptr<const Schema> scenario_schema(const ScenarioVocabulary& vocabulary) {
+  // Schemas are immutable: each thread keeps the last one built (a suite validates many scenarios with one
+  // vocabulary).
+  thread_local std::pair<ScenarioVocabulary, std::shared_ptr<const Schema>> last;
+  if (!last.second || !(last.first == vocabulary)) last = {vocabulary, build_scenario_schema(vocabulary)};
+  return last.second;
 }
 
 Scenario scenario_from_document(YamlDocument document, const std::vector<std::string>& overrides,
@@ -320,34 +226,16 @@ Scenario scenario_from_document(YamlDocument document, const std::vector<std::st
   s.condition = condition;
   s.episodes = root["episodes"].as<int>();
   s.seed = root["seed"].as<std::uint64_t>();
-  s.population = root["children"]["population"].as<std::string>();
-  s.purple = child_from(root["children"]["purple"]);
-  s.yellow = child_from(root["children"]["yellow"]);
-  s.policy = root["robot"]["policy"].as<std::string>();
-  s.policy_params = root["robot"]["params"];
-  s.robot_mode = root["robot"]["mode"].as<std::string>();
-  s.arm_reach_m = root["robot"]["arm_reach_m"].as<double>();
-  s.planner = root["planner"]["name"].as<std::string>();
-  s.planner_budget_s = root["planner"]["time_budget_s"].as<double>();
-  s.finger_speed_mps = root["planner"]["finger_speed_mps"].as<double>();
-  s.reject_blocked_goals = root["planner"]["reject_blocked_goals"].as<bool>();
-  s.face_detection_rate = root["perception"]["face_detection_rate"].as<double>();
-  s.perception_latency_s = root["perception"]["latency_s"].as<double>();
-  s.gaze_noise_deg = root["perception"]["gaze_noise_deg"].as<double>();
-  s.protocol.greeting_s = root["protocol"]["greeting_s"].as<double>();
-  s.protocol.tutorial_s = root["protocol"]["tutorial_s"].as<double>();
-  s.protocol.freeplay_cap_s = root["protocol"]["freeplay_cap_s"].as<double>();
-  s.protocol.debriefing_s = root["protocol"]["debriefing_s"].as<double>();
-  for (const auto& c : root["cameras"]) {
-    s.cameras.push_back({c["name"].as<std::string>(), c["rate_hz"].as<double>(), c["width"].as<int>(),
-                         c["height"].as<int>(), c["depth"].as<bool>(), c["video"].as<bool>()});
-  }
-  if (root["rendering"]["backend"].IsDefined()) s.rendering.backend = root["rendering"]["backend"].as<std::string>();
-  s.rendering.preset = root["rendering"]["preset"].as<std::string>();
+  s.children = read_settings<ChildrenSettings>(root["children"]);
+  s.robot = read_settings<RobotSettings>(root["robot"], vocabulary);
+  s.planner = read_settings<PlannerSettings>(root["planner"], vocabulary);
+  s.perception = read_settings<PerceptionSettings>(root["perception"]);
+  s.protocol = read_settings<Protocol>(root["protocol"]);
+  for (const auto& c : root["cameras"]) s.cameras.push_back(read_settings<CameraStream>(c, vocabulary));
+  s.rendering = read_settings<RenderingSettings>(root["rendering"]);
   if (const auto& r = root["record"]; r.IsMap()) {
     s.record = r["bag"].as<bool>();
-    s.recording = {r["jpeg_quality"].as<int>(), r["png_level"].as<int>(), r["chunk_kb"].as<int>(),
-                   r["compression"].as<std::string>(), r["encoder_threads"].as<int>()};
+    s.recording = read_settings<RecordSettings>(r);
   } else {
     s.record = r.as<bool>();
   }

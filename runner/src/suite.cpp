@@ -49,7 +49,11 @@ bool is_suite_file(const std::filesystem::path& path) {
 
 Suite load_suite(const std::filesystem::path& path, const std::vector<std::string>& overrides,
                  const ScenarioVocabulary& vocabulary) {
-  auto doc = load_yaml_file(path);
+  return suite_from_document(load_yaml_file(path), path.parent_path(), overrides, vocabulary);
+}
+
+Suite suite_from_document(YamlDocument doc, const std::filesystem::path& base,
+                          const std::vector<std::string>& overrides, const ScenarioVocabulary& vocabulary) {
   ValidationErrors errors;
   if (!doc.root.IsDefined() || doc.root.IsNull()) {
     throw InputError("the file is empty; a suite needs 'suite' and 'scenarios'", {}, {}, {doc.file, 1, 1});
@@ -61,16 +65,22 @@ Suite load_suite(const std::filesystem::path& path, const std::vector<std::strin
   suite.file = doc.file;
   suite.name = doc.root["suite"].as<std::string>();
   suite.description = doc.root["description"].as<std::string>();
-  const auto base = path.parent_path();
   std::set<std::string> ids;
   const auto entries = doc.root["scenarios"];
   for (std::size_t i = 0; i < entries.size(); ++i) {
     const auto entry = entries[i];
     const std::string key = fmt::format("scenarios[{}]", i);
     const auto scenario_path = base / entry["scenario"].as<std::string>();
-    if (!std::filesystem::exists(scenario_path)) {
-      errors.add(InputError(fmt::format("scenario file '{}' does not exist", scenario_path.string()),
-                            key + ".scenario", "an existing file, relative to the suite file",
+    std::error_code error;  // e.g. a name too long for the file system: reported, never thrown
+    const auto type = std::filesystem::status(scenario_path, error).type();
+    if (type != std::filesystem::file_type::regular) {
+      std::string problem = fmt::format("scenario file '{}' does not exist", scenario_path.string());
+      if (type != std::filesystem::file_type::not_found && error) {
+        problem = fmt::format("scenario file '{}' cannot be read: {}", scenario_path.string(), error.message());
+      } else if (type != std::filesystem::file_type::not_found) {
+        problem = fmt::format("scenario '{}' is not a file", scenario_path.string());
+      }
+      errors.add(InputError(problem, key + ".scenario", "an existing file, relative to the suite file",
                             location_of(entry["scenario"], doc.file)));
       continue;
     }

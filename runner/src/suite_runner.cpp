@@ -113,7 +113,7 @@ RunReport run_suite(const Suite& suite, const RunOptions& options, const Episode
         r["scenario"] = task.variant->scenario.name;
         r["scenario_file"] = task.variant->scenario.file;
         r["condition"] = task.variant->scenario.condition;
-        if (task.variant->scenario.condition == "child-robot") r["policy"] = task.variant->scenario.policy;
+        if (task.variant->scenario.condition == "child-robot") r["policy"] = task.variant->scenario.robot.policy;
         r["episode"] = task.index;
         r["episode_id"] = file_id;
         r["seed"] = task.seed;

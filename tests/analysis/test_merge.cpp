@@ -26,7 +26,7 @@ runner::Suite tiny_suite() {
     v.id = id;
     v.scenario.name = id.substr(0, id.find('['));
     v.scenario.condition = id == "child-child" ? "child-child" : "child-robot";
-    v.scenario.policy = id.find("social") != std::string::npos && id.find("asocial") == std::string::npos ? "social"
+    v.scenario.robot.policy = id.find("social") != std::string::npos && id.find("asocial") == std::string::npos ? "social"
                                                                                                          : "asocial";
     v.scenario.episodes = episodes;
     v.scenario.seed = 2017;

@@ -31,6 +31,18 @@ expect 2 "'--set': 'oops' is not an assignment" -- "$freeplay" run "$dir/ok.yaml
 expect 2 "not a suite" -- "$freeplay" suite "$dir/ok.yaml" --out "$dir/r3"
 expect 2 "shard" -- "$freeplay" suite "$dir/suite.yaml" --shard 3/2
 expect 2 "--jobs" -- "$freeplay" run "$dir/ok.yaml" --jobs 0
+# Inputs that once escaped as bare library messages (exit 1): each is bad input, named by file and line, exit 2.
+long=$(printf 'a%.0s' {1..300})
+printf 'suite: s\nscenarios:\n  - scenario: %s/x.yaml\n' "$long" > "$dir/long-path-suite.yaml"
+printf 'name: x\ncondition: child-robot\ncameras: [{name: env_camera}]\n' > "$dir/camera.yaml"
+printf 'name: x\ncondition: child-child\n? [1, 2]\n: 3\n' > "$dir/map-key.yaml"
+printf 'name: *nothing\ncondition: child-child\n' > "$dir/alias.yaml"
+expect 2 "long-path-suite.yaml:3:15: 'scenarios[0].scenario': scenario file" -- "$freeplay" validate "$dir/long-path-suite.yaml"
+expect 2 "cannot be read: File name too long" -- "$freeplay" validate "$dir/long-path-suite.yaml"
+expect 2 "'99999999999999999999' is not an index of the list at 'cameras.99999999999999999999' (allowed: 0…0)" -- \
+  "$freeplay" validate "$dir/camera.yaml" --set cameras.99999999999999999999.rate_hz=1
+expect 2 "map-key.yaml:3:3: a key must be a name, found a list" -- "$freeplay" validate "$dir/map-key.yaml"
+expect 2 "alias.yaml:1:7: YAML syntax error" -- "$freeplay" validate "$dir/alias.yaml"
 [ -e "$dir/r1" ] && { echo "FAIL: a run folder was created for invalid input"; fail=1; }
 [ $fail -eq 0 ] && echo "1 passed, 0 failed" || echo "0 passed, 1 failed"
 exit $fail

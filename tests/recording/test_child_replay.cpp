@@ -81,7 +81,7 @@ TEST(ChildReplay, SamePolicyReproducesTheChildrensTouchesExactly) {
   const auto original = child_touches(s.result.events);
   ASSERT_GT(original.size(), 4U) << "the session needs touches to be a meaningful test";
   const auto scenario = replay_scenario(recorded, "");
-  EXPECT_EQ(scenario.policy, "asocial");
+  EXPECT_EQ(scenario.robot.policy, "asocial");
   const auto replay = replay_children(recorded, scenario, models());
   ASSERT_FALSE(replay.aborted);
   EXPECT_EQ(child_touches(replay.events), original);
@@ -103,7 +103,7 @@ TEST(ChildReplay, IdlePolicyMakesNoMovesWhileTheChildrensTouchesStayTheSame) {
   ASSERT_GT(count_events(s.result.events, "robot", "move_goal"), 0) << "the recorded robot should have moved";
   const auto recorded = read_recorded_children(s.dir);
   const auto scenario = replay_scenario(recorded, "idle");
-  EXPECT_EQ(scenario.policy, "idle");
+  EXPECT_EQ(scenario.robot.policy, "idle");
   const auto replay = replay_children(recorded, scenario, models());
   EXPECT_EQ(count_events(replay.events, "robot", "move_goal"), 0);
   EXPECT_EQ(replay.record.at("metrics").at("robot_actions").at("move").get<int>(), 0);

@@ -26,10 +26,10 @@ TEST(Scenario, MinimalFileGetsDefaults) {
   const auto s = parse("name: cc\ncondition: child-child\n");
   EXPECT_EQ(s.name, "cc");
   EXPECT_EQ(s.episodes, 1);
-  EXPECT_EQ(s.planner, "astar");
+  EXPECT_EQ(s.planner.name, "astar");
   EXPECT_DOUBLE_EQ(s.protocol.freeplay_cap_s, 2400.0);
-  EXPECT_DOUBLE_EQ(s.face_detection_rate, 0.98);
-  EXPECT_DOUBLE_EQ(s.arm_reach_m, 0.5);
+  EXPECT_DOUBLE_EQ(s.perception.face_detection_rate, 0.98);
+  EXPECT_DOUBLE_EQ(s.robot.arm_reach_m, 0.5);
   EXPECT_TRUE(s.cameras.empty());
 }
 
@@ -69,7 +69,7 @@ TEST(Scenario, AllProblemsReportedAtOnce) {
 
 TEST(Scenario, OverridesAreValidatedLikeTheFile) {
   const auto s = parse("name: cc\ncondition: child-child\n", {"planner.name=rrtconnect", "episodes=7"});
-  EXPECT_EQ(s.planner, "rrtconnect");
+  EXPECT_EQ(s.planner.name, "rrtconnect");
   EXPECT_EQ(s.episodes, 7);
   const auto msg = error_of("name: cc\ncondition: child-child\n", {"planner.name=teleport"});
   EXPECT_NE(msg.find("unknown value 'teleport'"), std::string::npos) << msg;

@@ -36,9 +36,9 @@ TEST(ShippedScenarios, BaselinesAreLargeAndThePInSoRoVariantHasItsSessionCounts)
     ASSERT_EQ(suite.variants.size(), 3u) << file;
     EXPECT_EQ(suite.variants[0].scenario.condition, "child-child");
     EXPECT_EQ(suite.variants[0].scenario.episodes, cc);
-    EXPECT_EQ(suite.variants[1].scenario.policy, "asocial");
+    EXPECT_EQ(suite.variants[1].scenario.robot.policy, "asocial");
     EXPECT_EQ(suite.variants[1].scenario.episodes, cr);
-    EXPECT_EQ(suite.variants[2].scenario.policy, "social");
+    EXPECT_EQ(suite.variants[2].scenario.robot.policy, "social");
     EXPECT_EQ(suite.variants[2].scenario.episodes, cr);
     // Common random numbers: both robot conditions share the seed, hence the same synthetic children.
     EXPECT_EQ(suite.variants[1].scenario.seed, suite.variants[2].scenario.seed);

@@ -36,8 +36,8 @@ TEST(Suite, ExpandsSweepsAndAppliesEntryOverrides) {
   EXPECT_EQ(suite.variants[0].id, "cc");
   EXPECT_EQ(suite.variants[0].scenario.episodes, 5);
   EXPECT_EQ(suite.variants[1].id, "cr[perception.latency_s=0.1,robot.arm_reach_m=0.4]");
-  EXPECT_EQ(suite.variants[4].scenario.planner, "rrtconnect");
-  EXPECT_DOUBLE_EQ(suite.variants[4].scenario.perception_latency_s, 0.3);
+  EXPECT_EQ(suite.variants[4].scenario.planner.name, "rrtconnect");
+  EXPECT_DOUBLE_EQ(suite.variants[4].scenario.perception.latency_s, 0.3);
   EXPECT_EQ(suite.total_episodes(), 5 + 4);
   EXPECT_TRUE(is_suite_file(dir / "suite.yaml"));
   EXPECT_FALSE(is_suite_file(dir / "cc.yaml"));

@@ -9,15 +9,9 @@
 #include "freeplay/agents/perception.hpp"
 #include "freeplay/core/rng.hpp"
 #include "freeplay/policies/play_policy.hpp"
+#include "freeplay/runner/settings.hpp"
 
 namespace freeplay::runner {
-
-/// Noise, latency and dropout of the perception pipeline.
-struct PerceptionSettings {
-  double face_detection_rate = 0.98;  ///< fraction of frames with the face found (PInSoRo: 98 %)
-  double latency_s = 0.1;             ///< delay between the world and the policy's observation
-  double gaze_noise_deg = 5.0;        ///< head-pose noise; the gaze class is confused with p = noise / 90°
-};
 
 /// What is observable about a child at one instant (input of the perception model).
 struct ChildTruth {

@@ -8,62 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "freeplay/core/yaml_schema.hpp"
+#include "freeplay/runner/settings.hpp"
 
 namespace freeplay::runner {
-
-/// Names the validator accepts for the open-ended choices (filled from the registries of the linked libraries).
-struct ScenarioVocabulary {
-  std::vector<std::string> policies = {"asocial", "social", "idle", "scripted"};  ///< registered play policies
-  std::vector<std::string> planners = {"astar", "rrtconnect", "prmstar", "rrtstar", "bitstar"};  ///< planners
-  std::vector<std::string> cameras = {"camera_purple", "camera_yellow", "env_camera", "CameraTop",
-                                      "CameraBottom"};  ///< stage cameras
-  std::vector<std::string> items = {"zebra", "elephant", "ball", "lion", "giraffe", "caravan", "crocodile",
-                                    "hippo", "boy", "girl"};  ///< sandtray items (controller `move` targets)
-};
-
-/// An explicit child profile (absent fields are sampled from the population).
-struct ChildSpec {
-  std::optional<int> age;                    ///< years, 4–8
-  std::optional<std::string> gender;         ///< "female" | "male"
-  std::optional<double> sociability;         ///< 0–1
-  std::optional<double> assertiveness;       ///< 0–1
-  std::optional<double> attention_span;      ///< 0–1
-  std::optional<int> tablet_familiarity;     ///< 0, 1, 2
-};
-
-/// One camera stream the scenario asks for.
-struct CameraStream {
-  std::string name;      ///< stage camera name
-  double rate_hz = 30;   ///< frames per simulated second
-  int width = 960;       ///< pixels
-  int height = 540;      ///< pixels
-  bool depth = false;    ///< also read back depth
-  bool video = false;    ///< write `videos/<episode>/<name>.mp4`
-};
-
-/// How the cameras are rendered (`rendering:`).
-struct RenderingSettings {
-  std::string backend;          ///< "osmesa" | "egl"; empty: $MUJOCO_GL, else osmesa
-  std::string preset = "fast";  ///< "fast" | "pretty"
-};
-
-/// How an episode is recorded (`record:` true or a map; docs/recording.md).
-struct RecordSettings {
-  int jpeg_quality = 90;              ///< colour JPEG quality (the real launch files: 90)
-  int png_level = 3;                  ///< PNG level of depth and background images (the real launch files: 3)
-  int chunk_kb = 768;                 ///< bag chunk size (rosbag's default): at most this much is lost on a kill
-  std::string compression = "none";   ///< bag chunk compression: "none" (as the real bags), "lz4", "bz2"
-  int encoder_threads = 2;            ///< threads compressing camera images (0: on the episode's own thread)
-};
-
-/// The protocol of the paper, with stage durations (s).
-struct Protocol {
-  double greeting_s = 300;         ///< greetings (the robot says hello in child-robot sessions)
-  double tutorial_s = 90;          ///< tutorial background, boy and girl only
-  double freeplay_cap_s = 2400;    ///< free play ends when the children quit or at this cap (40 min)
-  double debriefing_s = 120;       ///< blank screen, debriefing
-};
 
 /// One step of a controller scenario's target sequence.
 struct ControllerTarget {
@@ -92,7 +39,26 @@ struct ControllerSpec {
   double settle_speed_rad_s = 0.05;         ///< joint speeds below which the robot counts as still
   double hold_s = 0.2;                      ///< time held at each target once settled
   double timeout_s = 5.0;                   ///< longest time spent on one target
-  std::vector<ControllerTarget> targets;    ///< the sequence, in order
+  std::vector<ControllerTarget> targets;    ///< the sequence, in order (its own schema: `targets`)
+
+  /// The keys of `controller:` besides `targets`.
+  template <typename Archive>
+  void visit(Archive& a) {
+    a.field("mode", mode, Schema::enumeration({"dynamic", "kinematic"}), "robot simulation mode");
+    a.field("speed_fraction", speed_fraction, Schema::number(0.01, 50.0),
+            "joint speed of the commanded profile as a fraction of the Nao's velocity limits (> 1 exceeds them "
+            "deliberately)");
+    a.field("torque_fraction", torque_fraction, Schema::number(0.01, 50.0),
+            "profile speed at most this fraction of each joint's effort limit / its damping (> 1 exceeds the "
+            "motors' efforts deliberately)");
+    a.field("trace_interval_steps", trace_interval_steps, Schema::integer(1, 1000000),
+            "golden-trace checkpoint every N steps");
+    a.field("settle_tolerance_m", settle_tolerance_m, Schema::number(1e-5, 0.1));
+    a.field("settle_tolerance_rad", settle_tolerance_rad, Schema::number(1e-5, 1.0));
+    a.field("settle_speed_rad_s", settle_speed_rad_s, Schema::number(1e-4, 10.0));
+    a.field("hold_s", hold_s, Schema::number(0.0, 60.0), "time held at a target once settled");
+    a.field("timeout_s", timeout_s, Schema::number(0.1, 600.0), "longest time spent on one target");
+  }
 };
 
 /// A validated scenario.
@@ -105,20 +71,10 @@ struct Scenario {
   std::string condition;                 ///< "child-child" | "child-robot" ("controller" for kind controller)
   int episodes = 1;                      ///< episodes to run
   std::uint64_t seed = 1;                ///< root seed; episode i uses SeedSequence(seed).derive("episode/i")
-  std::string population = "pinsoro";    ///< population the children are sampled from
-  ChildSpec purple;                      ///< explicit purple profile fields
-  ChildSpec yellow;                      ///< explicit yellow profile fields (child-child only)
-  std::string policy = "asocial";        ///< robot play policy (child-robot only)
-  YAML::Node policy_params;              ///< policy-specific parameters (validated by the policy)
-  std::string robot_mode = "kinematic";  ///< "kinematic" | "dynamic"
-  double arm_reach_m = 0.5;              ///< reach used for the arm-reach disc (real sessions: 0.5)
-  std::string planner = "astar";         ///< motion planner
-  double planner_budget_s = 1.0;         ///< wall-clock planning budget (only anytime planners use it up)
-  double finger_speed_mps = 0.05;        ///< robot finger speed (5 mm per 0.1 s)
-  bool reject_blocked_goals = false;     ///< refuse goals inside other footprints (the real planner does not)
-  double face_detection_rate = 0.98;     ///< perception: fraction of frames with the face found
-  double perception_latency_s = 0.1;     ///< perception latency
-  double gaze_noise_deg = 5.0;           ///< perception: head-pose noise (SD)
+  ChildrenSettings children;             ///< who plays (population, explicit profile fields)
+  RobotSettings robot;                   ///< the robot's policy and body (child-robot only)
+  PlannerSettings planner;               ///< the motion planner of the robot's item moves
+  PerceptionSettings perception;         ///< the robot's perception noise and latency
   Protocol protocol;                     ///< stage durations
   std::vector<CameraStream> cameras;     ///< camera output (none: no rendering)
   RenderingSettings rendering;           ///< GL backend and visual preset of the cameras

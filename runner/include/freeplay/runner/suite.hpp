@@ -31,6 +31,10 @@ struct Suite {
 Suite load_suite(const std::filesystem::path& path, const std::vector<std::string>& overrides = {},
                  const ScenarioVocabulary& vocabulary = {});
 
+/// Same, from a parsed document whose scenario paths are relative to `base`.
+Suite suite_from_document(YamlDocument document, const std::filesystem::path& base,
+                          const std::vector<std::string>& overrides = {}, const ScenarioVocabulary& vocabulary = {});
+
 /// A one-scenario suite (for `freeplay run SCENARIO`).
 Suite single_scenario_suite(const std::filesystem::path& path, const std::vector<std::string>& overrides = {},
                             const ScenarioVocabulary& vocabulary = {});

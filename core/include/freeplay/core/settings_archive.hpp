@@ -1,0 +1,129 @@
+#pragma once
+// Typed settings structs whose YAML schema, defaults and reader come from one list of their fields (Drake's
+// Serialize pattern): a struct declares `template <class Archive> void visit(Archive& a)` calling
+// `a.field(key, member, schema, help)` (or `a.required` / `a.optional`) once per member; its member initialisers are
+// the defaults. `settings_schema<T>()` builds the map schema from that list and `read_settings<T>(node)` fills a
+// struct from a node the schema validated.
+
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "freeplay/core/yaml_schema.hpp"
+
+namespace freeplay {
+
+/// The YAML text of a default value: the shortest text that reads back the same value.
+template <typename T>
+std::string default_yaml_text(const T& value) {
+  if constexpr (std::is_same_v<T, bool>) {
+    return value ? "true" : "false";
+  } else if constexpr (std::is_same_v<T, YAML::Node>) {
+    YAML::Emitter out;
+    out << YAML::Flow << value;
+    return out.c_str();
+  } else {
+    return fmt::format("{}", value);
+  }
+}
+
+/// True for std::optional members (read as their value type).
+template <typename T>
+struct IsOptional : std::false_type {};
+/// True for std::optional members (read as their value type).
+template <typename T>
+struct IsOptional<std::optional<T>> : std::true_type {};
+
+/// Collects the schema fields of a settings struct, with the defaults of a default-constructed instance.
+class SchemaArchive {
+ public:
+  /// An optional key; absent, it takes the member's current (default) value.
+  template <typename T>
+  void field(const char* key, const T& value, std::shared_ptr<const Schema> schema, std::string help = {}) {
+    fields_.push_back(with_default(key, std::move(schema), default_yaml_text(value), std::move(help)));
+  }
+  /// A key the document must give.
+  template <typename T>
+  void required(const char* key, const T&, std::shared_ptr<const Schema> schema, std::string help = {}) {
+    fields_.push_back(freeplay::required(key, std::move(schema), std::move(help)));
+  }
+  /// An optional key without a default (the member stays empty when it is absent).
+  template <typename T>
+  void optional(const char* key, const T&, std::shared_ptr<const Schema> schema, std::string help = {}) {
+    fields_.push_back(freeplay::optional(key, std::move(schema), std::move(help)));
+  }
+  /// The collected fields, in declaration order.
+  std::vector<Field> take() { return std::move(fields_); }
+  /// The fields of settings struct `T`, with the defaults of a default-constructed instance.
+  template <typename T, typename... Context>
+  static std::vector<Field> fields_of(const Context&... context) {
+    T defaults;
+    SchemaArchive archive;
+    defaults.visit(archive, context...);
+    return archive.take();
+  }
+
+ private:
+  std::vector<Field> fields_;
+};
+
+/// Fills a settings struct from a node its schema validated (defaults already inserted).
+class ReadArchive {
+ public:
+  /// Reads from `node` (a map).
+  explicit ReadArchive(YAML::Node node) : node_(std::move(node)) {}
+  /// Reads a key that validation filled in.
+  template <typename T>
+  void field(const char* key, T& value, const std::shared_ptr<const Schema>& = {}, const std::string& = {}) {
+    read(node_[key], value);
+  }
+  /// Reads a required key.
+  template <typename T>
+  void required(const char* key, T& value, const std::shared_ptr<const Schema>& = {}, const std::string& = {}) {
+    read(node_[key], value);
+  }
+  /// Reads an optional key when it is present and not null.
+  template <typename T>
+  void optional(const char* key, T& value, const std::shared_ptr<const Schema>& = {}, const std::string& = {}) {
+    const YAML::Node child = node_[key];
+    if (child.IsDefined() && !child.IsNull()) read(child, value);
+  }
+
+ private:
+  template <typename T>
+  static void read(const YAML::Node& node, T& value) {
+    if constexpr (std::is_same_v<T, YAML::Node>) {
+      value = node;
+    } else if constexpr (requires(T& t, ReadArchive& a) { t.visit(a); }) {  // a nested settings struct
+      ReadArchive nested(node);
+      value.visit(nested);
+    } else if constexpr (IsOptional<T>::value) {
+      value = node.as<typename T::value_type>();
+    } else {
+      value = node.as<T>();
+    }
+  }
+  YAML::Node node_;
+};
+
+/// The map schema of settings struct `T` (its `visit` may take extra context, e.g. the accepted names).
+template <typename T, typename... Context>
+std::shared_ptr<const Schema> settings_schema(const Context&... context) {
+  return Schema::map(SchemaArchive::fields_of<T>(context...));
+}
+
+/// A settings struct read from `node`, which `settings_schema<T>()` validated.
+template <typename T, typename... Context>
+T read_settings(const YAML::Node& node, const Context&... context) {
+  T settings;
+  ReadArchive archive(node);
+  settings.visit(archive, context...);
+  return settings;
+}
+
+}  // namespace freeplay
