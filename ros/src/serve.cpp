@@ -237,8 +237,8 @@ class GraphRobot final : public runner::RobotActionSource {
       plan.start = pose.position();
       plan.goal = pose.position() + Eigen::Rotation2Dd(pose.theta) * Vec2(request.x, request.y);
       plan.obstacles = world.footprints();
-      plan.time_budget_s = scenario_.planner_budget_s;
-      const auto result = planning::plan_motion(scenario_.planner, plan, rng_);
+      plan.time_budget_s = scenario_.planner.time_budget_s;
+      const auto result = planning::plan_motion(scenario_.planner.name, plan, rng_);
       if (!result.ok) spdlog::warn("plan_motion: no path for {}: {}", item, result.message);
       for (const auto& p : result.path) path.push_back({p.position.x(), p.position.y()});
     } else {
@@ -279,7 +279,7 @@ runner::EpisodeResult serve(const runner::Scenario& scenario, std::uint64_t seed
   Live live{&graph, ros_graph::wall_now()};
   LivePublisher publisher(live, options.rate, !options.external_robot);
   if (child_robot) {
-    const auto body = runner::SharedModels::shipped().robot_body(scenario.robot_mode, scenario.arm_reach_m);
+    const auto body = runner::SharedModels::shipped().robot_body(scenario.robot.mode, scenario.robot.arm_reach_m);
     publisher.set_reach(body->reach());
   }
   std::unique_ptr<GraphRobot> robot;
