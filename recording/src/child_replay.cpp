@@ -22,26 +22,13 @@ namespace {
 
 constexpr double kTickS = 0.1;  // the episode's 10 Hz free-play tick
 
-// The inverse of the episode's event vocabulary (runner/src/episode.cpp).
-template <class E, std::size_t N>
-E parse_name(const std::array<std::pair<const char*, E>, N>& table, const std::string& name, const char* what) {
-  for (const auto& [text, value] : table) {
-    if (name == text) return value;
-  }
+// The inverse of the episode's event vocabulary (agents/perception.hpp), with an error naming the field.
+template <class E>
+E parse_name(const std::optional<E>& value, const std::string& name, const char* what) {
+  if (value) return *value;
   throw InputError(fmt::format("unknown {} '{}' in the recorded events", what, name), what,
                    "a bag written by this version of freeplay-sim");
 }
-
-constexpr std::array<std::pair<const char*, agents::GazeKind>, 6> kGazeKinds = {{
-    {"away", agents::GazeKind::Away}, {"partner", agents::GazeKind::PartnerFace}, {"item", agents::GazeKind::Item},
-    {"tray", agents::GazeKind::Tray}, {"robot", agents::GazeKind::Robot}, {"experimenter", agents::GazeKind::Experimenter}}};
-constexpr std::array<std::pair<const char*, agents::Utterance>, 6> kUtterances = {{
-    {"comment", agents::Utterance::Comment}, {"proposal", agents::Utterance::Proposal},
-    {"question", agents::Utterance::Question}, {"protest", agents::Utterance::Protest},
-    {"request", agents::Utterance::Request}, {"announce_stop", agents::Utterance::AnnounceStop}}};
-constexpr std::array<std::pair<const char*, agents::Addressee>, 3> kAddressees = {{
-    {"nobody", agents::Addressee::Nobody}, {"partner", agents::Addressee::Partner},
-    {"experimenter", agents::Addressee::Experimenter}}};
 
 struct Finger {
   bool down = false;
@@ -172,13 +159,13 @@ RecordedChildren read_recorded_children(const std::filesystem::path& session) {
             a.select_colour = sim::palette_from_name(d.value("colour", ""));
           } else if (e->type == "speech") {
             agents::SpeechEvent speech;
-            speech.kind = parse_name(kUtterances, d.value("kind", ""), "speech.kind");
-            speech.to = parse_name(kAddressees, d.value("to", ""), "speech.to");
+            speech.kind = parse_name(agents::parse_utterance(d.value("kind", "")), d.value("kind", ""), "speech.kind");
+            speech.to = parse_name(agents::parse_addressee(d.value("to", "")), d.value("to", ""), "speech.to");
             speech.duration_s = d.value("duration_s", 0.0);
             speech.syllables = d.value("syllables", 0);
             a.speech = speech;
           } else if (e->type == "gaze") {
-            gaze.kind = parse_name(kGazeKinds, d.value("target", ""), "gaze.target");
+            gaze.kind = parse_name(agents::parse_gaze_kind(d.value("target", "")), d.value("target", ""), "gaze.target");
             gaze.item = d.contains("item") ? agents::item_index(d["item"].get<std::string>()) : -1;
           } else if (e->type == "wants_to_stop") {
             quit = true;

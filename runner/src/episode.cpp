@@ -921,13 +921,6 @@ class Episode {
     };
     shares("purple", *annotations.purple);
     if (annotations.yellow) shares("yellow", *annotations.yellow);
-    for (const auto& c : children_) {
-      const auto& coded = c.seat_name == "purple" ? annotations.purple : annotations.yellow;
-      if (coded) {
-        metrics["coder_agreement"][c.seat_name] =
-            agents::timeline_agreement(*coded, c.agent->timeline(), agents::Axis::SocialEngagement, duration);
-      }
-    }
     int child_touches = 0;
     int child_moves = 0;
     for (const auto& c : children_) {
@@ -971,6 +964,12 @@ class Episode {
     for (const auto& c : children_) {
       children[c.seat_name] = profile_json(c.agent->profile());
       children[c.seat_name]["quit_time_s"] = c.agent->quit_time();
+      // How often the coded social label equals the child's own state (the child's state is not in a bag).
+      const auto& coded = c.seat_name == "purple" ? annotations.purple : annotations.yellow;
+      if (coded) {
+        children[c.seat_name]["coder_agreement"] =
+            agents::timeline_agreement(*coded, c.agent->timeline(), agents::Axis::SocialEngagement, duration);
+      }
     }
     auto out = provenance_fields(log_);
     out.update({{"duration_s", duration},

@@ -62,7 +62,7 @@ TEST(Partnership, FullEpisodesCarryTheCodedGroundTruthAndTheChildrensStates) {
   // The annotations a user receives are the coded timelines; the children's own states are kept beside them.
   EXPECT_EQ(agents::to_pinsoro_yaml({session.purple.timeline, session.yellow->timeline}),
             agents::to_pinsoro_yaml(cc.annotations));
-  const double agreement = cc.record["metrics"]["coder_agreement"]["purple"].get<double>();
+  const double agreement = cc.record["children"]["purple"]["coder_agreement"].get<double>();
   EXPECT_GE(agreement, 0.0);
   EXPECT_LE(agreement, 1.0);
   EXPECT_DOUBLE_EQ(agreement, agents::timeline_agreement(session.purple.timeline, session.purple.internal,
