@@ -125,7 +125,9 @@ void run_calibrate(const CalibrateOptions& o) {
     }
     if (o.condition != "cc") {
       cr = agents::summarise(full_population(cr_file, {}, o.sessions, o.seed, o.threads, models), agents::Condition::ChildRobot);
-      if (!o.policies.empty()) by_policy.emplace_back("scenario's", *cr);
+      if (!o.policies.empty()) {
+        by_policy.emplace_back(runner::load_scenario(cr_file, {}, scenario_vocabulary()).robot.policy, *cr);
+      }
       for (const auto& policy : o.policies) {
         by_policy.emplace_back(policy, agents::summarise(full_population(cr_file, {"robot.policy=" + policy},
                                                                          o.sessions, o.seed, o.threads, models),
