@@ -38,7 +38,7 @@ ObservedPlayer observed_child(const ChildActions& actions, const std::array<Seen
 PairCoder::PairCoder(const CoderParams& params, bool second_is_robot)
     : params_(params), second_is_robot_(second_is_robot) {}
 
-void PairCoder::track(double t, double dt, int who, const ObservedPlayer& self, const ObservedPlayer& other) {
+void PairCoder::track(double t, double dt, int who, const ObservedPlayer& self) {
   Track& me = tracks_[static_cast<std::size_t>(who)];
   const Track& them = tracks_[static_cast<std::size_t>(1 - who)];
   // Attention to the other player: speaking to it, or a gaze that lands on it.
@@ -77,7 +77,6 @@ void PairCoder::track(double t, double dt, int who, const ObservedPlayer& self, 
                (self.gaze.kind == GazeKind::Tray && (self.gaze.point - them.last_touch_point).norm() < 0.08) ||
                looks_at_other(self.gaze);
   }
-  (void)other;
   const double w = 1.0 - std::exp(-dt / params_.watch_window_s);
   me.watch += w * ((watching ? 1.0 : 0.0) - me.watch);
   prev_gaze_[static_cast<std::size_t>(who)] = self.gaze;
@@ -132,8 +131,8 @@ void PairCoder::observe(double t, const ObservedPlayer& first, const ObservedPla
   }
   const double dt = std::max(t - last_t_, 0.0);
   last_t_ = t;
-  track(t, dt, 0, first, second);
-  track(t, dt, 1, second, first);
+  track(t, dt, 0, first);
+  track(t, dt, 1, second);
   code(t, 0, candidate(t, 0));
   if (!second_is_robot_) code(t, 1, candidate(t, 1));
 }

@@ -60,7 +60,7 @@ class PairCoder {
     ChildTimeline timeline;
   };
 
-  void track(double t, double dt, int who, const ObservedPlayer& self, const ObservedPlayer& other);
+  void track(double t, double dt, int who, const ObservedPlayer& self);
   SocialEngagement candidate(double t, int who) const;
   void code(double t, int who, SocialEngagement label);
 
