@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <array>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -65,20 +66,28 @@ std::vector<agents::SessionResult> full_population(const std::filesystem::path& 
 
 /// Child-robot social-engagement shares of the purple child per policy (the same children: same seeds).
 std::string policy_share_table(const std::vector<std::pair<std::string, agents::PopulationStats>>& by_policy) {
-  std::string out = fmt::format("\nchild-robot social engagement by robot policy (per-child mean share; predictions, not fitted)\n{:<14}",
+  std::string out = fmt::format("\nchild-robot label shares by robot policy (per-child mean share; predictions, not fitted)\n{:<18}",
                                 "label");
   for (const auto& [policy, stats] : by_policy) out += fmt::format(" {:>10}", policy);
   out += "\n";
-  const auto s = static_cast<std::size_t>(agents::Axis::SocialEngagement);
-  for (std::size_t j = 0; j < agents::label_count(agents::Axis::SocialEngagement); ++j) {
-    out += fmt::format("{:<14}", agents::label_name(agents::Axis::SocialEngagement, j));
-    for (const auto& entry : by_policy) out += fmt::format(" {:>10.3f}", entry.second.labels.share[s][j]);
-    out += "\n";
+  for (const agents::Axis axis : agents::kAxes) {
+    const auto a = static_cast<std::size_t>(axis);
+    for (std::size_t j = 0; j < agents::label_count(axis); ++j) {
+      out += fmt::format("{:<18}", agents::label_name(axis, j));
+      for (const auto& entry : by_policy) out += fmt::format(" {:>10.3f}", entry.second.labels.share[a][j]);
+      out += "\n";
+    }
   }
-  out += fmt::format("{:<14}", "duration (min)");
+  out += fmt::format("{:<18}", "duration (min)");
   for (const auto& entry : by_policy) out += fmt::format(" {:>10.2f}", entry.second.duration.mean_min);
-  out += "\n" + fmt::format("{:<14}", "coder = state");
-  for (const auto& entry : by_policy) out += fmt::format(" {:>10.3f}", entry.second.labels.coder_agreement);
+  static constexpr std::array<const char*, agents::kAxisCount> kAgreementRow = {"coded=own task", "coded=own social",
+                                                                                "coded=own attitude"};
+  for (const agents::Axis axis : agents::kAxes) {
+    out += "\n" + fmt::format("{:<18}", kAgreementRow[static_cast<std::size_t>(axis)]);
+    for (const auto& entry : by_policy) {
+      out += fmt::format(" {:>10.3f}", entry.second.labels.coder_agreement_by_axis[static_cast<std::size_t>(axis)]);
+    }
+  }
   return out + "\n";
 }
 
@@ -125,10 +134,10 @@ void run_calibrate(const CalibrateOptions& o) {
     }
     if (o.condition != "cc") {
       cr = agents::summarise(full_population(cr_file, {}, o.sessions, o.seed, o.threads, models), agents::Condition::ChildRobot);
-      if (!o.policies.empty()) {
-        by_policy.emplace_back(runner::load_scenario(cr_file, {}, scenario_vocabulary()).robot.policy, *cr);
-      }
+      const std::string scenario_policy = runner::load_scenario(cr_file, {}, scenario_vocabulary()).robot.policy;
+      if (!o.policies.empty()) by_policy.emplace_back(scenario_policy, *cr);
       for (const auto& policy : o.policies) {
+        if (policy == scenario_policy) continue;  // the scenario's own policy ran above, on the same seeds
         by_policy.emplace_back(policy, agents::summarise(full_population(cr_file, {"robot.policy=" + policy},
                                                                          o.sessions, o.seed, o.threads, models),
                                                          agents::Condition::ChildRobot));
@@ -154,14 +163,18 @@ void run_calibrate(const CalibrateOptions& o) {
                      {"checked", r.checked}, {"lo", r.lo}, {"hi", r.hi}, {"within", r.within()}});
     }
     nlohmann::json policies = nlohmann::json::object();
-    const auto s = static_cast<std::size_t>(agents::Axis::SocialEngagement);
     for (const auto& [policy, stats] : by_policy) {
-      for (std::size_t j = 0; j < agents::label_count(agents::Axis::SocialEngagement); ++j) {
-        policies[policy]["social_share"][std::string(agents::label_name(agents::Axis::SocialEngagement, j))] =
-            stats.labels.share[s][j];
+      for (const agents::Axis axis : agents::kAxes) {
+        for (std::size_t j = 0; j < agents::label_count(axis); ++j) {
+          policies[policy]["share"][std::string(agents::axis_name(axis))][std::string(agents::label_name(axis, j))] =
+              stats.labels.share[static_cast<std::size_t>(axis)][j];
+        }
       }
       policies[policy]["duration_mean_min"] = stats.duration.mean_min;
-      policies[policy]["coder_agreement"] = stats.labels.coder_agreement;
+      for (const agents::Axis axis : agents::kAxes) {
+        policies[policy]["coder_agreement"][std::string(agents::axis_name(axis))] =
+            stats.labels.coder_agreement_by_axis[static_cast<std::size_t>(axis)];
+      }
     }
     std::cout << nlohmann::json{{"sessions", o.sessions}, {"seed", o.seed},     {"full", o.full},
                                 {"outside", outside},     {"rows", out},        {"policies", policies}}

@@ -48,6 +48,9 @@ constexpr double kDyadCoopTarget = 0.474;
 constexpr double kDyadCoopLo = 0.35;
 constexpr double kDyadCoopHi = 0.60;
 constexpr double kBoutFactor = 1.5;
+/// §8: P(same label) of the two children on the task and attitude axes (reported; the reference gives no band).
+constexpr double kDyadSameTaskTarget = 0.657;
+constexpr double kDyadSameAttitudeTarget = 0.731;
 
 double quantile(std::vector<double> values, double q) {
   if (values.empty()) return 0.0;
@@ -79,43 +82,49 @@ void add_child(const ChildOutcome& child, double duration_s, LabelStats& stats,
   (void)duration_s;
 }
 
-/// §8 dyadic coupling: both children's social labels sampled every second over the time both are labelled.
+/// §8 dyadic coupling: both children's labels sampled every second over the time both are labelled.
 class DyadCoupling {
  public:
   void add(const ChildTimeline& a, const ChildTimeline& b, double duration) {
-    std::vector<std::pair<double, std::uint8_t>> sa = social_bouts(a);
-    std::vector<std::pair<double, std::uint8_t>> sb = social_bouts(b);
-    std::size_t ia = 0;
-    std::size_t ib = 0;
-    for (double t = 0.5; t < duration; t += 1.0) {
-      while (ia + 1 < sa.size() && sa[ia + 1].first <= t) ++ia;
-      while (ib + 1 < sb.size() && sb[ib + 1].first <= t) ++ib;
-      if (sa.empty() || sb.empty() || sa[ia].first > t || sb[ib].first > t) continue;
-      ++samples_;
-      if (sa[ia].second == sb[ib].second) {
-        ++same_;
-        ++pair_[sa[ia].second];
+    for (const Axis axis : kAxes) {
+      const auto x = static_cast<std::size_t>(axis);
+      const std::vector<std::pair<double, std::uint8_t>> sa = bouts_of(a, axis);
+      const std::vector<std::pair<double, std::uint8_t>> sb = bouts_of(b, axis);
+      std::size_t ia = 0;
+      std::size_t ib = 0;
+      for (double t = 0.5; t < duration; t += 1.0) {
+        while (ia + 1 < sa.size() && sa[ia + 1].first <= t) ++ia;
+        while (ib + 1 < sb.size() && sb[ib + 1].first <= t) ++ib;
+        if (sa.empty() || sb.empty() || sa[ia].first > t || sb[ib].first > t) continue;
+        ++samples_[x];
+        if (sa[ia].second != sb[ib].second) continue;
+        ++same_[x];
+        if (axis == Axis::SocialEngagement) ++pair_[sa[ia].second];
       }
     }
   }
   void finish(LabelStats& l) const {
-    if (samples_ == 0) return;
-    l.dyad_same_social = static_cast<double>(same_) / samples_;
-    for (std::size_t j = 0; j < kMaxLabels; ++j) l.dyad_pair_share[j] = static_cast<double>(pair_[j]) / samples_;
+    for (std::size_t x = 0; x < kAxisCount; ++x) {
+      l.dyad_same[x] = samples_[x] > 0 ? static_cast<double>(same_[x]) / samples_[x] : 0.0;
+    }
+    const auto s = static_cast<std::size_t>(Axis::SocialEngagement);
+    if (samples_[s] == 0) return;
+    l.dyad_same_social = l.dyad_same[s];
+    for (std::size_t j = 0; j < kMaxLabels; ++j) l.dyad_pair_share[j] = static_cast<double>(pair_[j]) / samples_[s];
     l.dyad_cooperative = l.dyad_pair_share[static_cast<std::size_t>(SocialEngagement::Cooperative)];
   }
 
  private:
-  static std::vector<std::pair<double, std::uint8_t>> social_bouts(const ChildTimeline& timeline) {
+  static std::vector<std::pair<double, std::uint8_t>> bouts_of(const ChildTimeline& timeline, Axis axis) {
     std::vector<std::pair<double, std::uint8_t>> out;
     for (const auto& bout : timeline) {
-      if (bout.axis == Axis::SocialEngagement) out.emplace_back(bout.start, bout.label);
+      if (bout.axis == axis) out.emplace_back(bout.start, bout.label);
     }
     std::sort(out.begin(), out.end());
     return out;
   }
-  long samples_ = 0;
-  long same_ = 0;
+  std::array<long, kAxisCount> samples_{};
+  std::array<long, kAxisCount> same_{};
   std::array<long, kMaxLabels> pair_{};
 };
 
@@ -141,6 +150,13 @@ void add_duration_rows(std::vector<ComparisonRow>& rows, const std::string& grou
 }
 
 /// What the children met, per child-minute (no targets: shown to explain durations).
+void add_agreement_rows(std::vector<ComparisonRow>& rows, const std::string& group, const LabelStats& l) {
+  for (const Axis axis : kAxes) {
+    rows.push_back({group, fmt::format("coded = child's own {}", axis_name(axis)),
+                    l.coder_agreement_by_axis[static_cast<std::size_t>(axis)], 0, 0, 0, false});
+  }
+}
+
 void add_behaviour_rows(std::vector<ComparisonRow>& rows, const std::string& group, const LabelStats& l) {
   rows.push_back({group, "items taken from the child / min", l.items_taken_per_min, 0, 0, 0, false});
   rows.push_back({group, "contingent responses / min", l.contingent_per_min, 0, 0, 0, false});
@@ -292,14 +308,17 @@ PopulationStats summarise(const std::vector<SessionResult>& sessions, Condition 
   std::array<double, kAxisCount> changes{};
   int children = 0;
   double total_minutes = 0.0;
-  double agreement_sum = 0.0;
+  std::array<double, kAxisCount> agreement_sum{};
   double agreement_weight = 0.0;
   double taken = 0.0, contingent = 0.0, unanswered = 0.0;
   const auto add_agreement = [&](const ChildOutcome& child, double duration) {
     taken += child.counters.items_taken;
     contingent += child.counters.contingent_responses;
     unanswered += child.counters.unanswered_bids;
-    agreement_sum += duration * timeline_agreement(child.timeline, child.internal, Axis::SocialEngagement, duration);
+    for (const Axis axis : kAxes) {
+      agreement_sum[static_cast<std::size_t>(axis)] +=
+          duration * timeline_agreement(child.timeline, child.internal, axis, duration);
+    }
     agreement_weight += duration;
   };
   DyadCoupling dyads;
@@ -326,7 +345,10 @@ PopulationStats summarise(const std::vector<SessionResult>& sessions, Condition 
     }
     l.changes_per_min[a] = total_minutes > 0.0 ? changes[a] / total_minutes : 0.0;
   }
-  l.coder_agreement = agreement_weight > 0.0 ? agreement_sum / agreement_weight : 0.0;
+  for (std::size_t x = 0; x < kAxisCount; ++x) {
+    l.coder_agreement_by_axis[x] = agreement_weight > 0.0 ? agreement_sum[x] / agreement_weight : 0.0;
+  }
+  l.coder_agreement = l.coder_agreement_by_axis[static_cast<std::size_t>(Axis::SocialEngagement)];
   if (total_minutes > 0.0) {
     l.items_taken_per_min = taken / total_minutes;
     l.contingent_per_min = contingent / total_minutes;
@@ -388,12 +410,18 @@ std::vector<ComparisonRow> compare_with_targets(const PopulationStats* cc, const
     rows.push_back({"cc dyad (1-s sampling)", "associative+associative",
                     cc->labels.dyad_pair_share[static_cast<std::size_t>(SocialEngagement::Associative)], 0.156, 0, 0,
                     false});
-    rows.push_back({"cc coder", "coded = internal social label", cc->labels.coder_agreement, 0, 0, 0, false});
+    rows.push_back({"cc dyad (1-s sampling)", "P(same task label)",
+                    cc->labels.dyad_same[static_cast<std::size_t>(Axis::TaskEngagement)], kDyadSameTaskTarget, 0, 0,
+                    false});
+    rows.push_back({"cc dyad (1-s sampling)", "P(same attitude label)",
+                    cc->labels.dyad_same[static_cast<std::size_t>(Axis::SocialAttitude)], kDyadSameAttitudeTarget, 0,
+                    0, false});
+    add_agreement_rows(rows, "cc coder", cc->labels);
     add_behaviour_rows(rows, "cc behaviour", cc->labels);
   }
   if (cr) {
     add_duration_rows(rows, "cr duration", cr->duration, kCrDuration);
-    rows.push_back({"cr coder", "coded = internal social label", cr->labels.coder_agreement, 0, 0, 0, false});
+    add_agreement_rows(rows, "cr coder", cr->labels);
     add_behaviour_rows(rows, "cr behaviour", cr->labels);
   }
   return rows;

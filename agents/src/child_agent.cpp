@@ -10,6 +10,8 @@ constexpr double kScreenW = sim::kScreenWidthM;
 constexpr double kScreenH = sim::kScreenHeightM;
 constexpr double kMargin = 0.02;
 constexpr double kNever = 1e18;
+/// Comments among the utterances to the partner that are not proposals (the rest are questions).
+constexpr double kCommentShareOfTheRest = 5.0 / 7.0;
 
 double min_jerk(double tau) {
   tau = std::clamp(tau, 0.0, 1.0);
@@ -267,6 +269,10 @@ void ChildAgent::switch_label(Axis axis, std::size_t label, double t) {
   if (t > bout_start_[a]) timeline_.push_back({axis, static_cast<std::uint8_t>(current), bout_start_[a], t});
   labels_.set(axis, label);
   bout_start_[a] = t;
+  // A child that becomes frustrated says so.
+  if (axis == Axis::SocialAttitude && label == static_cast<std::size_t>(SocialAttitude::Frustrated)) {
+    protest_pending_ = true;
+  }
   next_switch_[a] = quit_ ? kNever : t + draw_dwell(axis, label);
 }
 
@@ -396,8 +402,9 @@ void ChildAgent::plan_action(double t, const ChildPerception& seen, ChildActions
   const bool aimless = labels_.task == TaskEngagement::Aimless;
 
   // Which kind of action: drags, taps, strokes; parallel play copies the partner's kind of activity.
-  double p_drag = aimless ? 0.35 : 0.75;
-  double p_stroke = aimless ? 0.45 : 0.15;
+  // Silly play is mostly scribbles and taps; considered play mostly moves items into place.
+  double p_drag = aimless ? 0.2 : 0.75;
+  double p_stroke = aimless ? 0.5 : 0.15;
   if (social == SocialEngagement::Parallel && partner_recent &&
       rng_.bernoulli(params_->reactions.imitation_probability)) {
     p_drag = partner_last_was_stroke_ ? 0.0 : 1.0;
@@ -677,9 +684,12 @@ void ChildAgent::update_speech(double t, double dt, ChildActions& out) {
   if (partner_robot_) rate += e.robot_curiosity_per_min * std::exp(-t / (60.0 * params_->drives.novelty_tau_min));
   rate *= bid_scale();
   if (rng_.bernoulli(rate * dt / 60.0)) {
+    // The attitude shows in what is said: an assertive child directs the play, a passive one hardly proposes.
+    const double proposal = e.proposal_share[static_cast<std::size_t>(labels_.attitude)];
     const double u = rng_.uniform();
-    say(u < 0.5 ? Utterance::Comment : (u < 0.8 ? Utterance::Proposal : Utterance::Question), Addressee::Partner,
-        out, t);
+    const double comment = proposal + (1.0 - proposal) * kCommentShareOfTheRest;
+    say(u < proposal ? Utterance::Proposal : (u < comment ? Utterance::Comment : Utterance::Question),
+        Addressee::Partner, out, t);
   }
 }
 

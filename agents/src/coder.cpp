@@ -32,7 +32,12 @@ ObservedPlayer observed_child(const ChildActions& actions, const std::array<Seen
   }
   o.gaze = actions.gaze;
   o.speech = actions.speech;
+  o.stroke_colour = actions.select_colour;
   return o;
+}
+
+bool draws_landscape(PaletteColour colour) {
+  return colour == PaletteColour::Blue || colour == PaletteColour::Green || colour == PaletteColour::Yellow;
 }
 
 PairCoder::PairCoder(const CoderParams& params, bool second_is_robot)
@@ -44,10 +49,12 @@ void PairCoder::track(double t, double dt, int who, const ObservedPlayer& self) 
   // Attention to the other player: speaking to it, or a gaze that lands on it.
   const bool spoke = self.speech && self.speech->to == Addressee::Partner;
   const bool glanced = looks_at_other(self.gaze) && !looks_at_other(prev_gaze_[static_cast<std::size_t>(who)]);
+  const bool answered = (spoke || glanced) && t - them.last_attend_t <= params_.answer_window_s;
+  track_task_and_attitude(t, dt, who, self, answered);
   if (spoke || glanced) {
     // An act of attention that answers the other's recent one is an exchange when one of the two was spoken (an
     // exchange of glances alone is not yet playing together); both players are in it.
-    if (t - them.last_attend_t <= params_.answer_window_s && (spoke || them.last_attend_spoken)) {
+    if (answered && (spoke || them.last_attend_spoken)) {
       if (t - last_exchange_t_ > params_.exchange_hold_s) exchange_start_t_ = t;
       last_exchange_t_ = t;
       // A proposal taken up is working on a shared goal: cooperation.
@@ -63,7 +70,10 @@ void PairCoder::track(double t, double dt, int who, const ObservedPlayer& self) 
     const bool on_their_item = self.touch_item >= 0 && self.touch_item == them.last_item && other_recent;
     const bool in_their_area = other_recent && (self.touch_point - them.last_touch_point).norm() <
                                                    params_.joint_distance_m;
-    if ((on_their_item || in_their_area) && t - last_exchange_t_ <= params_.exchange_hold_s) me.last_joint_t = t;
+    if ((on_their_item || in_their_area) && t - last_exchange_t_ <= params_.exchange_hold_s) {
+      me.last_joint_t = t;
+      if (on_their_item) me.last_directive_t = t;  // moving the other's item in joint work takes the lead
+    }
   }
   if (self.touching) {
     me.last_touch_t = t;
@@ -80,6 +90,74 @@ void PairCoder::track(double t, double dt, int who, const ObservedPlayer& self) 
   const double w = 1.0 - std::exp(-dt / params_.watch_window_s);
   me.watch += w * ((watching ? 1.0 : 0.0) - me.watch);
   prev_gaze_[static_cast<std::size_t>(who)] = self.gaze;
+}
+
+void PairCoder::track_task_and_attitude(double t, double dt, int who, const ObservedPlayer& self, bool answered) {
+  Track& me = tracks_[static_cast<std::size_t>(who)];
+  const Track& them = tracks_[static_cast<std::size_t>(1 - who)];
+  // Task engagement: moving items and drawing the landscape are the game's considered actions; scribbles in other
+  // colours and taps are play without a plan; a look or word to the adult is adult seeking.
+  if (self.stroke_colour) {
+    me.drawing = true;
+    me.stroke_touched = false;
+    me.landscape_stroke = draws_landscape(*self.stroke_colour);
+  }
+  if (self.touching) {
+    me.stroke_touched = me.drawing;
+    const bool constructive = self.touch_item >= 0 || (me.drawing && me.landscape_stroke);
+    (constructive ? me.last_constructive_t : me.last_aimless_t) = t;
+  } else if (me.stroke_touched) {
+    me.drawing = me.stroke_touched = false;  // the drawing finger has left the screen
+  }
+  if (self.gaze.kind == GazeKind::Experimenter || (self.speech && self.speech->to == Addressee::Experimenter)) {
+    me.last_adult_t = t;
+  }
+  // Social attitude.
+  const int held = self.touching ? self.touch_item : -1;
+  if (held >= 0 && static_cast<std::size_t>(held) < me.held_t.size()) {
+    const auto item = static_cast<std::size_t>(held);
+    // Grabbing what the other was just playing with, while the two are not playing together, is taking it.
+    const bool theirs = them.held_t[item] > me.held_t[item] && t - them.held_t[item] <= params_.take_window_s;
+    if (held != me.holding && theirs && t - last_exchange_t_ > params_.exchange_hold_s) me.last_take_t = t;
+    me.held_t[item] = t;
+  }
+  me.holding = held;
+  if (self.speech && self.speech->to == Addressee::Partner) {
+    switch (self.speech->kind) {
+      case Utterance::Protest: me.last_protest_t = t; break;
+      case Utterance::Proposal:
+      case Utterance::Request: me.last_directive_t = t; break;
+      default: me.last_friendly_t = t; break;
+    }
+  }
+  // Answering the other in words is friendly; a returned glance alone is not yet an attitude.
+  if (answered && self.speech && self.speech->to == Addressee::Partner) me.last_friendly_t = t;
+  // A coder judges the kind of play and the attitude over stretches of behaviour, not single acts: running shares
+  // of the time with recent considered play, other play, and friendly acts.
+  const auto recent = [&](double since) { return t - since <= params_.evidence_hold_s ? 1.0 : 0.0; };
+  const double w = 1.0 - std::exp(-dt / params_.judgement_window_s);
+  me.constructive += w * (recent(std::max(me.last_constructive_t, me.last_directive_t)) - me.constructive);
+  me.aimless += w * (recent(std::max(me.last_aimless_t, me.last_friendly_t)) - me.aimless);
+  me.friendly += w * (recent(std::max(me.last_friendly_t, me.last_joint_t)) - me.friendly);
+}
+
+TaskEngagement PairCoder::task_candidate(double t, int who) const {
+  const Track& me = tracks_[static_cast<std::size_t>(who)];
+  if (t - me.last_adult_t <= params_.adult_hold_s) return TaskEngagement::AdultSeeking;
+  if (std::max(me.constructive, me.aimless) < params_.play_share) return TaskEngagement::NoPlay;
+  // Discussing what to do next is part of the task; chatting without playing is being off task.
+  return me.constructive >= me.aimless ? TaskEngagement::GoalOriented : TaskEngagement::Aimless;
+}
+
+SocialAttitude PairCoder::attitude_candidate(double t, int who) const {
+  const Track& me = tracks_[static_cast<std::size_t>(who)];
+  if (t - me.last_take_t <= params_.adversarial_hold_s) return SocialAttitude::Adversarial;
+  if (t - me.last_protest_t <= params_.frustrated_hold_s) return SocialAttitude::Frustrated;
+  // Taking part in an exchange, or friendly acts often enough, is prosocial, and directing the other's play
+  // within it is assertive; a child keeping to itself is passive, even when it throws in a suggestion.
+  const bool interacting = t - last_exchange_t_ <= params_.interaction_hold_s || me.friendly >= params_.friendly_share;
+  if (!interacting) return SocialAttitude::Passive;
+  return t - me.last_directive_t <= params_.assertive_hold_s ? SocialAttitude::Assertive : SocialAttitude::Prosocial;
 }
 
 SocialEngagement PairCoder::candidate(double t, int who) const {
@@ -103,8 +181,8 @@ SocialEngagement PairCoder::candidate(double t, int who) const {
   return SocialEngagement::Solitary;
 }
 
-void PairCoder::code(double t, int who, SocialEngagement label) {
-  Coded& c = coded_[static_cast<std::size_t>(who)];
+void PairCoder::code(double t, int who, Axis axis, std::uint8_t label) {
+  Coded& c = coded_[static_cast<std::size_t>(who)][static_cast<std::size_t>(axis)];
   if (label == c.label) {
     c.candidate = label;
     return;
@@ -113,12 +191,17 @@ void PairCoder::code(double t, int who, SocialEngagement label) {
     c.candidate = label;
     c.candidate_since = t;
   }
-  if (t - c.candidate_since < params_.min_bout_s) return;
+  // Frustration and hostility are salient: a coder marks them even when brief.
+  const bool salient = axis == Axis::SocialAttitude && (label == static_cast<std::uint8_t>(SocialAttitude::Frustrated) ||
+                                                        label == static_cast<std::uint8_t>(SocialAttitude::Adversarial));
+  const double min_bout = axis == Axis::TaskEngagement   ? params_.task_min_bout_s
+                          : salient                      ? params_.salient_min_bout_s
+                          : axis == Axis::SocialAttitude ? params_.attitude_min_bout_s
+                                                         : params_.min_bout_s;
+  if (t - c.candidate_since < min_bout) return;
   // The coder marks the new sequence from where it visibly began.
   const double start = std::max(c.candidate_since, c.bout_start);
-  if (start > c.bout_start) {
-    c.timeline.push_back({Axis::SocialEngagement, static_cast<std::uint8_t>(c.label), c.bout_start, start});
-  }
+  if (start > c.bout_start) c.timeline.push_back({axis, c.label, c.bout_start, start});
   c.label = label;
   c.bout_start = start;
 }
@@ -126,33 +209,43 @@ void PairCoder::code(double t, int who, SocialEngagement label) {
 void PairCoder::observe(double t, const ObservedPlayer& first, const ObservedPlayer& second) {
   if (!started_) {
     started_ = true;
-    for (auto& c : coded_) c.bout_start = c.candidate_since = t;
+    for (auto& player : coded_) {
+      for (const Axis axis : kAxes) {
+        Coded& c = player[static_cast<std::size_t>(axis)];
+        c.bout_start = c.candidate_since = t;
+        // Before anything is seen the coder starts from the annotator's reset values.
+        LabelState reset;
+        c.label = c.candidate = static_cast<std::uint8_t>(reset.index(axis));
+      }
+    }
     last_t_ = t;
   }
   const double dt = std::max(t - last_t_, 0.0);
   last_t_ = t;
   track(t, dt, 0, first);
   track(t, dt, 1, second);
-  code(t, 0, candidate(t, 0));
-  if (!second_is_robot_) code(t, 1, candidate(t, 1));
+  const int players = second_is_robot_ ? 1 : 2;
+  for (int who = 0; who < players; ++who) {
+    code(t, who, Axis::TaskEngagement, static_cast<std::uint8_t>(task_candidate(t, who)));
+    code(t, who, Axis::SocialEngagement, static_cast<std::uint8_t>(candidate(t, who)));
+    code(t, who, Axis::SocialAttitude, static_cast<std::uint8_t>(attitude_candidate(t, who)));
+  }
 }
 
 void PairCoder::finish(double t) {
   const int players = second_is_robot_ ? 1 : 2;
   for (int who = 0; who < players; ++who) {
-    Coded& c = coded_[static_cast<std::size_t>(who)];
-    if (t > c.bout_start) c.timeline.push_back({Axis::SocialEngagement, static_cast<std::uint8_t>(c.label), c.bout_start, t});
-    c.bout_start = t;
+    for (const Axis axis : kAxes) {
+      Coded& c = coded_[static_cast<std::size_t>(who)][static_cast<std::size_t>(axis)];
+      if (t > c.bout_start) c.timeline.push_back({axis, c.label, c.bout_start, t});
+      c.bout_start = t;
+    }
   }
 }
 
-ChildTimeline with_coded_social(const ChildTimeline& internal, const ChildTimeline& coded_social) {
+ChildTimeline PairCoder::timeline(int player) const {
   ChildTimeline out;
-  out.reserve(internal.size() + coded_social.size());
-  for (const auto& bout : internal) {
-    if (bout.axis != Axis::SocialEngagement) out.push_back(bout);
-  }
-  out.insert(out.end(), coded_social.begin(), coded_social.end());
+  for (const Coded& c : coded_[static_cast<std::size_t>(player)]) out.insert(out.end(), c.timeline.begin(), c.timeline.end());
   std::stable_sort(out.begin(), out.end(), [](const LabelInterval& a, const LabelInterval& b) { return a.start < b.start; });
   return out;
 }

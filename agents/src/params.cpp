@@ -225,11 +225,13 @@ ChildModelParams parse_document(const YAML::Node& root, const Reader& r) {
                {"syllables_mean", &e.syllables_mean, 1, 50},
                {"articulation_rate_at_3", &e.articulation_rate_at_3, 0.5, 10},
                {"articulation_rate_per_year", &e.articulation_rate_per_year, 0, 1}},
-              {"partner_face_share", "speech_per_min"});
+              {"partner_face_share", "speech_per_min", "proposal_share"});
   read_label_map(r, r.child(expression, "expression", "partner_face_share"), "expression.partner_face_share",
                  Axis::SocialEngagement, e.partner_face_share, 0.0, 1.0, true);
   read_label_map(r, r.child(expression, "expression", "speech_per_min"), "expression.speech_per_min",
                  Axis::SocialEngagement, e.speech_per_min, 0.0, 60.0, true);
+  read_label_map(r, r.child(expression, "expression", "proposal_share"), "expression.proposal_share",
+                 Axis::SocialAttitude, e.proposal_share, 0.0, 1.0, true);
 
   TraitParams& t = p.traits;
   read_fields(r, r.child(root, "", "traits"), "traits",
@@ -268,7 +270,20 @@ ChildModelParams parse_document(const YAML::Node& root, const Reader& r) {
                {"watch_share", &co.watch_share, 0, 1},
                {"watch_window_s", &co.watch_window_s, 0.1, 600},
                {"min_bout_s", &co.min_bout_s, 0, 600},
-               {"joint_distance_m", &co.joint_distance_m, 0, 1}});
+               {"joint_distance_m", &co.joint_distance_m, 0, 1},
+               {"task_min_bout_s", &co.task_min_bout_s, 0, 600},
+               {"evidence_hold_s", &co.evidence_hold_s, 0.1, 600},
+               {"judgement_window_s", &co.judgement_window_s, 0.1, 600},
+               {"play_share", &co.play_share, 0, 1},
+               {"friendly_share", &co.friendly_share, 0, 1},
+               {"interaction_hold_s", &co.interaction_hold_s, 0.1, 600},
+               {"adult_hold_s", &co.adult_hold_s, 0.1, 600},
+               {"attitude_min_bout_s", &co.attitude_min_bout_s, 0, 600},
+               {"salient_min_bout_s", &co.salient_min_bout_s, 0, 600},
+               {"take_window_s", &co.take_window_s, 0.1, 600},
+               {"adversarial_hold_s", &co.adversarial_hold_s, 0.1, 600},
+               {"frustrated_hold_s", &co.frustrated_hold_s, 0.1, 600},
+               {"assertive_hold_s", &co.assertive_hold_s, 0.1, 600}});
   return p;
 }
 
@@ -409,6 +424,8 @@ std::string child_model_params_to_yaml(const ChildModelParams& p, std::string_vi
   emit_label_map(out, Axis::SocialEngagement, e.partner_face_share);
   out << YAML::Key << "speech_per_min" << YAML::Value;
   emit_label_map(out, Axis::SocialEngagement, e.speech_per_min);
+  out << YAML::Key << "proposal_share" << YAML::Value;
+  emit_label_map(out, Axis::SocialAttitude, e.proposal_share);
   out << YAML::EndMap;
   const TraitParams& t = p.traits;
   section("traits", {{"sociability_mean", t.sociability_mean},
@@ -442,7 +459,20 @@ std::string child_model_params_to_yaml(const ChildModelParams& p, std::string_vi
                     {"watch_share", co.watch_share},
                     {"watch_window_s", co.watch_window_s},
                     {"min_bout_s", co.min_bout_s},
-                    {"joint_distance_m", co.joint_distance_m}});
+                    {"joint_distance_m", co.joint_distance_m},
+                    {"task_min_bout_s", co.task_min_bout_s},
+                    {"evidence_hold_s", co.evidence_hold_s},
+                    {"judgement_window_s", co.judgement_window_s},
+                    {"play_share", co.play_share},
+                    {"friendly_share", co.friendly_share},
+                    {"interaction_hold_s", co.interaction_hold_s},
+                    {"adult_hold_s", co.adult_hold_s},
+                    {"attitude_min_bout_s", co.attitude_min_bout_s},
+                    {"salient_min_bout_s", co.salient_min_bout_s},
+                    {"take_window_s", co.take_window_s},
+                    {"adversarial_hold_s", co.adversarial_hold_s},
+                    {"frustrated_hold_s", co.frustrated_hold_s},
+                    {"assertive_hold_s", co.assertive_hold_s}});
   out << YAML::EndMap;
   out << YAML::EndMap;
   std::string text;

@@ -307,9 +307,8 @@ void fill_partner_from_child(const ChildActions& last, const StandInTray& tray, 
   view.wants_to_stop = last.quit;
 }
 
-ChildOutcome outcome_of(const ChildAgent& child, const ChildTimeline& coded_social) {
-  return {child.profile(), with_coded_social(child.timeline(), coded_social), child.timeline(), child.quit_time(),
-          child.counters()};
+ChildOutcome outcome_of(const ChildAgent& child, ChildTimeline coded) {
+  return {child.profile(), std::move(coded), child.timeline(), child.quit_time(), child.counters()};
 }
 
 }  // namespace

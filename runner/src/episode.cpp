@@ -222,10 +222,8 @@ class Episode {
     result.duration_s = duration;
     result.simulated_s = tray_.time();
     // The ground truth is what the coder saw; the children's own states stay for the agreement metric.
-    result.annotations.purple = agents::with_coded_social(children_[0].agent->timeline(), coder_->timeline(0));
-    if (!child_robot_) {
-      result.annotations.yellow = agents::with_coded_social(children_[1].agent->timeline(), coder_->timeline(1));
-    }
+    result.annotations.purple = coder_->timeline(0);
+    if (!child_robot_) result.annotations.yellow = coder_->timeline(1);
     result.hit_cap = ended_by == "cap";
     for (const auto& c : children_) {
       const auto& coded = c.seat_name == "purple" ? result.annotations.purple : result.annotations.yellow;
@@ -967,8 +965,11 @@ class Episode {
       // How often the coded social label equals the child's own state (the child's state is not in a bag).
       const auto& coded = c.seat_name == "purple" ? annotations.purple : annotations.yellow;
       if (coded) {
-        children[c.seat_name]["coder_agreement"] =
-            agents::timeline_agreement(*coded, c.agent->timeline(), agents::Axis::SocialEngagement, duration);
+        for (const agents::Axis axis : agents::kAxes) {
+          const double agreement = agents::timeline_agreement(*coded, c.agent->timeline(), axis, duration);
+          children[c.seat_name]["coder_agreement_by_axis"][std::string(agents::axis_name(axis))] = agreement;
+          if (axis == agents::Axis::SocialEngagement) children[c.seat_name]["coder_agreement"] = agreement;
+        }
       }
     }
     auto out = provenance_fields(log_);

@@ -20,6 +20,7 @@ struct PlayerState {
   bool started = false;
   agents::GazeTarget gaze;
   std::optional<agents::SpeechEvent> speech;
+  std::optional<sim::PaletteColour> colour;  // a palette swatch tapped since the last tick
 
   agents::ObservedPlayer observe() {
     agents::ObservedPlayer o;
@@ -31,8 +32,10 @@ struct PlayerState {
     o.touch_started = started;
     o.gaze = gaze;
     o.speech = speech;
+    o.stroke_colour = colour;
     started = false;
     speech.reset();
+    colour.reset();
     return o;
   }
 };
@@ -126,6 +129,8 @@ agents::SessionAnnotations code_event_log(const std::vector<Event>& events, cons
       p->gaze = agents::GazeTarget{};
       p->gaze.kind = agents::parse_gaze_kind(text(e.data, "target")).value_or(agents::GazeKind::Away);
       p->gaze.item = agents::item_index(text(e.data, "item"));
+    } else if (e.type == "palette") {
+      p->colour = sim::palette_from_name(text(e.data, "colour"));
     } else if (e.type == "speech") {
       agents::SpeechEvent speech;
       speech.kind = agents::parse_utterance(text(e.data, "kind")).value_or(agents::Utterance::Comment);

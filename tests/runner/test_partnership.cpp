@@ -87,7 +87,7 @@ TEST(EventCoding, ARecordedEventLogIsCodedAsTheLiveEpisodeWas) {
     EXPECT_GT(agents::timeline_agreement(*coded.purple, *episode.annotations.purple, agents::Axis::SocialEngagement,
                                          episode.duration_s),
               std::string(condition) == "child-child" ? 0.85 : 0.7)
-        << condition << "\nlive:\n" << agents::to_pinsoro_yaml({agents::with_coded_social({}, *episode.annotations.purple), {}})
+        << condition << "\nlive:\n" << agents::to_pinsoro_yaml({*episode.annotations.purple, {}})
         << "log:\n" << agents::to_pinsoro_yaml({*coded.purple, {}});
   }
 }

@@ -38,6 +38,8 @@ struct LabelStats {
   double dyad_same_social = 0.0;   ///< P(both children carry the same social label), 1-s sampling (child-child)
   double dyad_cooperative = 0.0;   ///< share of sampled seconds with both children cooperative (child-child)
   double coder_agreement = 0.0;    ///< share of sampled seconds where the coded social label equals the child's state
+  std::array<double, kAxisCount> coder_agreement_by_axis{};  ///< the same agreement on each axis
+  std::array<double, kAxisCount> dyad_same{};  ///< P(both children carry the same label) on each axis (child-child)
   std::array<double, kMaxLabels> dyad_pair_share{};  ///< share of sampled seconds with both children in label j
   double items_taken_per_min = 0.0;      ///< items the partner took from a child, per child-minute
   double contingent_per_min = 0.0;       ///< partner responses a child perceived as contingent, per child-minute

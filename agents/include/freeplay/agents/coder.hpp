@@ -1,11 +1,14 @@
 #pragma once
-// The coder: assigns social-engagement labels to both players of a session from what they visibly did, as the
-// human annotator of PInSoRo did while watching the recording (docs/agents.md, "The coder").
+// The coder: assigns the three coding-scheme labels (task engagement, social engagement, social attitude) to the
+// children of a session from what they visibly did, as the human annotator of PInSoRo did while watching the
+// recording (docs/agents.md, "The coder").
 //
-// It never sees a child's drives or intentions: only touches (where, on which item), gaze targets and speech
-// (kind, addressee), tick by tick. Both players are coded together, as one coder annotated both children.
+// It never sees a child's drives or intentions: only touches (where, on which item, with which colour), gaze
+// targets and speech (kind, addressee), tick by tick. Both players are coded together, as one coder annotated
+// both children.
 
 #include <array>
+#include <cstdint>
 #include <optional>
 
 #include "freeplay/agents/annotations.hpp"
@@ -22,7 +25,11 @@ struct ObservedPlayer {
   bool touch_started = false;              ///< a new touch began this tick
   GazeTarget gaze;                         ///< where the player looks (PartnerFace / Robot: at the other player)
   std::optional<SpeechEvent> speech;       ///< an utterance that started this tick
+  std::optional<PaletteColour> stroke_colour;  ///< a colour picked on the palette this tick (a drawing begins)
 };
+
+/// True for the palette colours that draw the game's landscape (water, grass, sand): blue, green and yellow.
+bool draws_landscape(PaletteColour colour);
 
 /// What a child visibly did this tick: its actions, and its fingers on the screen (`touches`, first `touch_count`).
 ObservedPlayer observed_child(const ChildActions& actions, const std::array<SeenTouch, 6>& touches, int touch_count);
@@ -38,8 +45,12 @@ class PairCoder {
   /// Closes the open bouts at `t`; the timelines are complete afterwards.
   void finish(double t);
 
-  /// The social-engagement bouts of player 0 (purple) or 1 (yellow; empty when it is the robot).
-  const ChildTimeline& timeline(int player) const { return coded_[static_cast<std::size_t>(player)].timeline; }
+  /// The coded bouts of every axis of player 0 (purple) or 1 (yellow; empty when it is the robot), sorted by start.
+  ChildTimeline timeline(int player) const;
+  /// The coded bouts of one axis of player 0 or 1, in time order.
+  const ChildTimeline& timeline(int player, Axis axis) const {
+    return coded_[static_cast<std::size_t>(player)][static_cast<std::size_t>(axis)].timeline;
+  }
 
  private:
   struct Track {
@@ -51,18 +62,39 @@ class PairCoder {
     bool last_attend_spoken = false;
     double last_joint_t = -1e9;
     double watch = 0.0;  // running share of time spent watching the other's play
+    // Task engagement evidence.
+    bool landscape_stroke = false;  // the current drawing uses a landscape colour
+    bool drawing = false;           // a colour was picked and the drawing finger has not left the screen since
+    bool stroke_touched = false;    // the drawing finger has been seen on the screen
+    double last_constructive_t = -1e9;
+    double last_aimless_t = -1e9;
+    double last_adult_t = -1e9;
+    // Social attitude evidence.
+    std::array<double, 10> held_t{};  // when this player last held each item
+    int holding = -1;                 // the item under this player's finger at the previous tick
+    double last_take_t = -1e9;
+    double last_protest_t = -1e9;
+    double last_directive_t = -1e9;
+    double last_friendly_t = -1e9;
+    // Running shares (over `judgement_window_s`) of time with recent considered play, other play and friendly acts.
+    double constructive = 0.0;
+    double aimless = 0.0;
+    double friendly = 0.0;
   };
   struct Coded {
-    SocialEngagement label = SocialEngagement::Solitary;
+    std::uint8_t label = 0;
     double bout_start = 0.0;
-    SocialEngagement candidate = SocialEngagement::Solitary;
+    std::uint8_t candidate = 0;
     double candidate_since = 0.0;
     ChildTimeline timeline;
   };
 
   void track(double t, double dt, int who, const ObservedPlayer& self);
+  void track_task_and_attitude(double t, double dt, int who, const ObservedPlayer& self, bool answered);
   SocialEngagement candidate(double t, int who) const;
-  void code(double t, int who, SocialEngagement label);
+  TaskEngagement task_candidate(double t, int who) const;
+  SocialAttitude attitude_candidate(double t, int who) const;
+  void code(double t, int who, Axis axis, std::uint8_t label);
 
   CoderParams params_;
   bool second_is_robot_;
@@ -70,13 +102,11 @@ class PairCoder {
   double last_t_ = 0.0;
   std::array<Track, 2> tracks_{};
   std::array<GazeTarget, 2> prev_gaze_{};
-  std::array<Coded, 2> coded_{};
+  std::array<std::array<Coded, kAxisCount>, 2> coded_{};
   double last_exchange_t_ = -1e9;
   double exchange_start_t_ = -1e9;
 };
 
-/// `internal` with its social-engagement bouts replaced by `coded_social` (sorted by start, as annotations are).
-ChildTimeline with_coded_social(const ChildTimeline& internal, const ChildTimeline& coded_social);
 
 /// Share of the time in [0, end) where two timelines carry the same label on `axis` (sampled every `step` s).
 double timeline_agreement(const ChildTimeline& a, const ChildTimeline& b, Axis axis, double end, double step = 1.0);

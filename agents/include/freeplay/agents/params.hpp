@@ -106,6 +106,7 @@ struct ExpressionParams {
   double syllables_mean = 6.0;                      ///< mean syllables per utterance
   double articulation_rate_at_3 = 2.7;              ///< syllables/s at 3 years
   double articulation_rate_per_year = 0.12;         ///< increase per year (3.3 at 8 years)
+  std::array<double, 5> proposal_share{0.3, 0.3, 0.7, 0.1, 0.1};  ///< share of proposals among utterances to the partner, per own social attitude
 };
 
 /// How the personality traits of a sampled child are distributed (normal, clamped to [0, 1]).
@@ -145,6 +146,19 @@ struct CoderParams {
   double watch_window_s = 4.0;    ///< window of that share (s)
   double min_bout_s = 3.0;        ///< a new label must hold this long before the coder switches to it (s)
   double joint_distance_m = 0.12; ///< a touch this close to the partner's recent touch is on the partner's area
+  double task_min_bout_s = 4.0;   ///< task engagement: a new label must hold this long before the coder switches (s)
+  double evidence_hold_s = 3.0;   ///< an act (a drag, a scribble, a friendly word) counts as recent this long (s)
+  double judgement_window_s = 10.0;  ///< the coder judges play and attitude over running shares of this window (s)
+  double play_share = 0.2;        ///< below this running share of recent play (of any kind) a child is not playing
+  double friendly_share = 0.3;    ///< from this running share of recent friendly acts on, the attitude is prosocial
+  double interaction_hold_s = 20.0;  ///< an exchange shows a prosocial (or assertive) attitude this long (s)
+  double adult_hold_s = 5.0;      ///< a look or a word to the experimenter shows adult seeking this long (s)
+  double attitude_min_bout_s = 6.0;  ///< social attitude: a new label must hold this long before the coder switches (s)
+  double salient_min_bout_s = 2.0;   ///< the same for the salient attitudes, frustrated and adversarial (s)
+  double take_window_s = 10.0;    ///< an item the other player held this recently is still the other's (s)
+  double adversarial_hold_s = 6.0;   ///< taking the other's item shows an adversarial attitude this long (s)
+  double frustrated_hold_s = 3.0; ///< a protest shows frustration this long (s)
+  double assertive_hold_s = 6.0;  ///< a proposal or request to the other (directing its play) shows assertiveness this long (s)
 };
 
 /// Every parameter of the child model (immutable once loaded).
