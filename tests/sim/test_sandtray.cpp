@@ -354,6 +354,10 @@ TEST(Sandtray, TicksWithoutInputRecomputeNoRaster) {
   EXPECT_EQ(tray->background_version(), version);
   EXPECT_EQ(tray->zone_counters().images, before.images);
   EXPECT_EQ(tray->zone_counters().masks_recomputed, before.masks_recomputed);
+  EXPECT_EQ(tray->zone_counters().rasters_full, before.rasters_full);
+  EXPECT_EQ(tray->zone_counters().rasters_windowed, before.rasters_windowed);
+  EXPECT_EQ(tray->zone_counters().contour_searches, before.contour_searches);
+  EXPECT_EQ(tray->zone_counters().distance_pixels, before.distance_pixels);
   // A stroke changes the background: one more segmentation at the next 4 Hz poll, reusing unchanged masks.
   tray->select_colour(PaletteColour::Red);
   tray->touch_down(1, {0.30, -0.15});
