@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <numeric>
 #include <string>
 
 #include <opencv2/imgproc.hpp>
@@ -144,6 +145,36 @@ std::vector<char> rows_read_by_resize(int rows, int height) {
   return needed;
 }
 
+/// Rows of the downsampled image that a bilinear resize of a band of source rows alone gives exactly as the whole
+/// resize does (the same scale, taps inside the band), or all rows when no smaller band does. Checked once on a
+/// random image, so an OpenCV whose rounding differs falls back to whole resizes.
+int resize_band_rows(const cv::Size& source, const cv::Size& small) {
+  thread_local cv::Size checked_source;
+  thread_local cv::Size checked_small;
+  thread_local int checked_rows = 0;
+  if (source == checked_source && small == checked_small) return checked_rows;
+  checked_source = source;
+  checked_small = small;
+  checked_rows = small.height;
+  const int g = std::gcd(source.height, small.height);
+  const int band_rows = small.height / g;
+  const int source_rows = source.height / g;
+  if (band_rows == small.height) return checked_rows;
+  cv::Mat image(source, CV_8UC3);
+  cv::RNG rng(17);
+  rng.fill(image, cv::RNG::UNIFORM, 0, 256);
+  cv::Mat whole_resize;
+  cv::resize(image, whole_resize, small, 0, 0, cv::INTER_LINEAR);
+  cv::Mat banded(small, CV_8UC3);
+  for (int band = 0; band < g; ++band) {
+    cv::Mat target = banded.rowRange(band * band_rows, (band + 1) * band_rows);
+    cv::resize(image.rowRange(band * source_rows, (band + 1) * source_rows), target, target.size(), 0, 0,
+               cv::INTER_LINEAR);
+  }
+  if (cv::norm(whole_resize, banded, cv::NORM_INF) == 0.0) checked_rows = band_rows;
+  return checked_rows;
+}
+
 }  // namespace
 
 HsvRange zone_hsv_range(std::string_view colour) { return range_of(colour).range; }
@@ -271,15 +302,30 @@ ZoneMap ZoneSegmenter::segment(const cv::Mat& bgr, double metres_per_pixel, std:
   const int small_height =
       std::max(1, static_cast<int>(std::lround(static_cast<double>(bgr.rows) * kZoneSegmentationWidthPx / bgr.cols)));
   const cv::Rect whole(0, 0, bgr.cols, bgr.rows);
+  const cv::Size small_size(kZoneSegmentationWidthPx, small_height);
   if (hsv_.size() != bgr.size()) {
     hsv_ = cv::Mat::zeros(bgr.size(), CV_8UC3);
     needed_ = rows_read_by_resize(bgr.rows, small_height);
+    band_rows_ = resize_band_rows(bgr.size(), small_size);
     changed = whole;
   }
-  convert_rows(bgr, changed ? (*changed & whole) : whole);
-  const cv::Size small_size(kZoneSegmentationWidthPx, small_height);
-  std::swap(small_hsv_, previous_small_);
-  cv::resize(hsv_, small_hsv_, small_size, 0, 0, cv::INTER_LINEAR);
+  const cv::Rect converted = changed ? (*changed & whole) : whole;
+  convert_rows(bgr, converted);
+  if (small_hsv_.size() != small_size) {
+    std::swap(small_hsv_, previous_small_);
+    cv::resize(hsv_, small_hsv_, small_size, 0, 0, cv::INTER_LINEAR);
+  } else {
+    // Only the bands of rows whose source rows were converted again.
+    small_hsv_.copyTo(previous_small_);
+    const int bands = small_height / band_rows_;
+    const int source_rows = bgr.rows / bands;
+    for (int band = converted.y / source_rows; band < bands && band * source_rows < converted.y + converted.height;
+         ++band) {
+      cv::Mat target = small_hsv_.rowRange(band * band_rows_, (band + 1) * band_rows_);
+      cv::resize(hsv_.rowRange(band * source_rows, (band + 1) * source_rows), target, target.size(), 0, 0,
+                 cv::INTER_LINEAR);
+    }
+  }
   const double scale_x = static_cast<double>(bgr.cols) / kZoneSegmentationWidthPx;
   const double scale_y = static_cast<double>(bgr.rows) / small_height;
   ++counters_.images;

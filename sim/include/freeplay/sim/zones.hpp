@@ -115,6 +115,7 @@ class ZoneSegmenter {
   std::vector<char> needed_;    // rows of hsv_ the downsampling reads
   cv::Mat small_hsv_;           // the downsampled HSV image
   cv::Mat previous_small_;      // the one before (the masks change only where they differ)
+  int band_rows_ = 0;           // rows of small_hsv_ resized together (a band of source rows resizes alone exactly)
   Counters counters_;
 };
 
