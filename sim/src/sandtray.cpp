@@ -258,6 +258,18 @@ struct Sandtray::Impl {
     return out;
   }
 
+  ItemState state_of(std::size_t index) const {
+    const Item& item = items[index];
+    ItemState s;
+    s.name = item.spec->name;
+    s.pose = pose_of(item);
+    s.z = item.z;
+    s.visible = item.visible;
+    s.holders = holders_of(static_cast<int>(index));
+    if (!s.holders.empty()) s.holder = s.holders.front();
+    return s;
+  }
+
   static nlohmann::json holder_json(const Holder& holder) {
     if (holder.kind == Holder::Kind::Robot) return {{"holder", "robot"}};
     return {{"holder", "finger"}, {"finger", holder.finger}};
@@ -760,23 +772,11 @@ bool Sandtray::asleep() const { return impl_->all_asleep(); }
 std::vector<ItemState> Sandtray::items() const {
   std::vector<ItemState> out;
   out.reserve(impl_->items.size());
-  for (std::size_t i = 0; i < impl_->items.size(); ++i) {
-    const auto& item = impl_->items[i];
-    ItemState s;
-    s.name = item.spec->name;
-    s.pose = impl_->pose_of(item);
-    s.z = item.z;
-    s.visible = item.visible;
-    s.holders = impl_->holders_of(static_cast<int>(i));
-    if (!s.holders.empty()) s.holder = s.holders.front();
-    out.push_back(std::move(s));
-  }
+  for (std::size_t i = 0; i < impl_->items.size(); ++i) out.push_back(impl_->state_of(i));
   return out;
 }
 
-ItemState Sandtray::item(const std::string& name) const {
-  return items()[impl_->catalogue->index_of(name)];
-}
+ItemState Sandtray::item(const std::string& name) const { return impl_->state_of(impl_->catalogue->index_of(name)); }
 
 std::vector<TouchState> Sandtray::touches() const {
   std::vector<TouchState> out;

@@ -238,7 +238,7 @@ void ColourRaster::recompute_all(ColourRasterWork& work) {
   }
   chamfer_window(dilated_, distance_, whole, window_);
   work.distance_pixels += static_cast<std::uint64_t>(whole.area());
-  max_distance_ = *std::max_element(distance_.begin(), distance_.end());
+  refresh_row_maxima(0, whole.height);
   distance_valid_ = true;
   refresh_foreground(whole);
   find_contours(work);
@@ -246,13 +246,18 @@ void ColourRaster::recompute_all(ColourRasterWork& work) {
 
 cv::Rect ColourRaster::update_distances(const cv::Rect& moved, ColourRasterWork& work) {
   const cv::Size size = mask_.size();
-  const int reach = static_cast<int>(max_distance_ / kStraight);
-  const cv::Rect scan = grown(moved, reach, size);
+  const cv::Rect scan = grown(moved, static_cast<int>(max_distance_ / kStraight), size);
   int x0 = moved.x, y0 = moved.y, x1 = moved.x + moved.width - 1, y1 = moved.y + moved.height - 1;
   for (int y = scan.y; y < scan.y + scan.height; ++y) {
+    // No pixel of a row whose largest distance is below 65536 × its Chebyshev distance to `moved` can change.
+    const auto row_max = static_cast<std::uint64_t>(row_max_[static_cast<std::size_t>(y)]);
     const int dy = y < moved.y ? moved.y - y : std::max(0, y - (moved.y + moved.height - 1));
+    if (row_max < static_cast<std::uint64_t>(dy) * kStraight) continue;
+    const int row_reach = static_cast<int>(row_max / kStraight);
+    const int xa = std::max(scan.x, moved.x - row_reach);
+    const int xb = std::min(scan.x + scan.width, moved.x + moved.width + row_reach);
     const std::uint32_t* d = distance_.data() + static_cast<std::ptrdiff_t>(y) * size.width;
-    for (int x = scan.x; x < scan.x + scan.width; ++x) {
+    for (int x = xa; x < xb; ++x) {
       const int dx = x < moved.x ? moved.x - x : std::max(0, x - (moved.x + moved.width - 1));
       const auto chebyshev = static_cast<std::uint64_t>(std::max(dx, dy));
       if (static_cast<std::uint64_t>(d[x]) >= chebyshev * kStraight) {
@@ -263,8 +268,18 @@ cv::Rect ColourRaster::update_distances(const cv::Rect& moved, ColourRasterWork&
   const cv::Rect window(x0, y0, x1 - x0 + 1, y1 - y0 + 1);
   chamfer_window(dilated_, distance_, window, window_);
   work.distance_pixels += static_cast<std::uint64_t>(window.area());
-  max_distance_ = *std::max_element(distance_.begin(), distance_.end());
+  refresh_row_maxima(window.y, window.y + window.height);
   return window;
+}
+
+void ColourRaster::refresh_row_maxima(int first_row, int end_row) {
+  const int cols = mask_.cols;
+  row_max_.resize(static_cast<std::size_t>(mask_.rows));
+  for (int y = first_row; y < end_row; ++y) {
+    const std::uint32_t* d = distance_.data() + static_cast<std::ptrdiff_t>(y) * cols;
+    row_max_[static_cast<std::size_t>(y)] = *std::max_element(d, d + cols);
+  }
+  max_distance_ = *std::max_element(row_max_.begin(), row_max_.end());
 }
 
 bool ColourRaster::refresh_foreground(const cv::Rect& window) {

@@ -46,6 +46,8 @@ class ColourRaster {
   void recompute_all(ColourRasterWork& work);
   /// Distances after the dilated mask changed inside `moved`; returns the window recomputed.
   cv::Rect update_distances(const cv::Rect& moved, ColourRasterWork& work);
+  /// Largest distance of each row in [first_row, end_row), then of the image.
+  void refresh_row_maxima(int first_row, int end_row);
   /// Threshold and dilation inside `window` (grown by 2 for the dilation); true when the foreground changed.
   bool refresh_foreground(const cv::Rect& window);
   void find_contours(ColourRasterWork& work);
@@ -60,6 +62,7 @@ class ColourRaster {
   std::vector<std::uint32_t> distance_;  // chamfer distances of dilated_ (16.16 fixed point)
   std::vector<std::uint32_t> window_;    // scratch for one windowed distance pass (with a 2-pixel ring)
   std::vector<unsigned char> scratch_;   // scratch for the separable filters
+  std::vector<std::uint32_t> row_max_;   // largest distance of each row
   std::uint32_t max_distance_ = 0;
   int nonzero_ = 0;           // non-zero pixels of dilated_
   bool valid_ = false;        // derived rasters match mask_ (and distance_ is exact)
