@@ -86,7 +86,7 @@ class ZoneMap {
 };
 
 /// Segments a sequence of backgrounds, redoing a colour's morphology, distance transform and contours only when
-/// that colour's mask changed since the previous image (a stroke usually changes one or two of the seven masks), and
+/// that colour's mask changed since the previous image (a stroke changes a few of the seven masks), and
 /// then only around the changed pixels; a whole new background reuses the masks its thread segmented recently. The
 /// zones are identical to ZoneMap::segment's.
 class ZoneSegmenter {
