@@ -22,6 +22,8 @@ done
 [ -d build/bench ] || { echo "run_all.sh: build/bench/ is missing; build first (scripts/build.sh)" >&2; exit 2; }
 mkdir -p "$out"
 compare=/usr/share/benchmark/compare.py
+python=/usr/bin/python3  # Debian's, with python3-scipy for compare.py (a python3 earlier on PATH may lack it)
+[ -x "$python" ] || python=python3
 for program in build/bench/bench_*; do
   [ -x "$program" ] || continue
   name=$(basename "$program")
@@ -34,7 +36,9 @@ for program in build/bench/bench_*; do
   if [ "$update" -eq 1 ]; then
     mkdir -p bench/reference && cp "$out/$name.json" "$reference"
   elif [ -f "$reference" ] && [ -f "$compare" ]; then
-    python3 "$compare" benchmarks "$reference" "$out/$name.json" | grep -E "_median" || true
+    "$python" "$compare" benchmarks "$reference" "$out/$name.json" > "$out/$name.compare.txt" 2>&1 ||
+      echo "run_all.sh: compare.py failed for $name (see $out/$name.compare.txt; it needs python3-scipy)" >&2
+    grep -E "_median" "$out/$name.compare.txt" || true
   fi
 done
 echo "results: $out"

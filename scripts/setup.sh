@@ -7,7 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config git ccache
   libmujoco-dev libmujoco-samples libosmesa6-dev libegl-dev
   libbox2d-dev libompl-dev libopencv-dev libeigen3-dev libyaml-cpp-dev
-  libgtest-dev libgmock-dev libbenchmark-dev libbenchmark-tools
+  libgtest-dev libgmock-dev libbenchmark-dev libbenchmark-tools python3-scipy
   libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev libboost-math-dev
   librosbag-storage-dev libsensor-msgs-dev libtf2-msgs-dev libgeometry-msgs-dev libstd-msgs-dev
   libvisualization-msgs-dev librcpputils-dev librcutils-dev libament-index-cpp-dev python3-rosbag

@@ -4,10 +4,13 @@
 
 #include <cmath>
 
+#include <opencv2/imgproc.hpp>
+
 #include "freeplay/sim/background.hpp"
 #include "freeplay/sim/canvas.hpp"
 #include "freeplay/sim/item_catalogue.hpp"
 #include "freeplay/sim/screen_renderer.hpp"
+#include "freeplay/sim/zone_raster.hpp"
 #include "freeplay/sim/zones.hpp"
 
 namespace freeplay::sim {
@@ -128,6 +131,58 @@ void BM_CanvasHash(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_CanvasHash)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace freeplay::sim
+
+namespace freeplay::sim {
+namespace {
+
+/// One colour's windowed raster update after a small blob changed in its 200 px mask (a stroke's footprint): the
+/// opening, distance transform and threshold around it, and the contour search when the foreground moved.
+void BM_ColourRasterWindowedUpdate(benchmark::State& state) {
+  DrawingCanvas canvas(960);
+  canvas.set_background(BackgroundKind::FreeplayMap);
+  cv::Mat hsv;
+  cv::Mat small;
+  cv::cvtColor(canvas.image(), hsv, cv::COLOR_BGR2HSV);
+  cv::resize(hsv, small, cv::Size(kZoneSegmentationWidthPx, 112));
+  const HsvRange range = zone_hsv_range("green");
+  detail::ColourRaster raster;
+  raster.resize(small.size());
+  cv::inRange(small, cv::Scalar(range.lower[0], range.lower[1], range.lower[2]),
+              cv::Scalar(range.upper[0], range.upper[1], range.upper[2]), raster.mask());
+  ZoneSegmenterCounters work;
+  raster.update(cv::Rect(0, 0, small.cols, small.rows), work);
+  int k = 0;
+  for (auto _ : state) {
+    const cv::Point at(10 + (k * 37) % 180, 10 + (k * 61) % 92);
+    const cv::Rect blob(at.x - 4, at.y - 3, 9, 7);
+    cv::rectangle(raster.mask(), blob, cv::Scalar(k % 2 == 0 ? 0 : 255), cv::FILLED);
+    raster.update(blob, work);
+    benchmark::DoNotOptimize(raster.contours().size());
+    ++k;
+  }
+  state.counters["contour_search_share"] = static_cast<double>(work.contour_searches) / static_cast<double>(k);
+  state.counters["distance_px_per_update"] = static_cast<double>(work.distance_pixels) / static_cast<double>(k);
+}
+BENCHMARK(BM_ColourRasterWindowedUpdate)->Unit(benchmark::kMicrosecond);
+
+/// The same colour's whole-image pipeline with the real node's OpenCV calls (what each update cost before).
+void BM_ColourRasterReference(benchmark::State& state) {
+  DrawingCanvas canvas(960);
+  canvas.set_background(BackgroundKind::FreeplayMap);
+  cv::Mat hsv;
+  cv::Mat small;
+  cv::Mat mask;
+  cv::cvtColor(canvas.image(), hsv, cv::COLOR_BGR2HSV);
+  cv::resize(hsv, small, cv::Size(kZoneSegmentationWidthPx, 112));
+  const HsvRange range = zone_hsv_range("green");
+  cv::inRange(small, cv::Scalar(range.lower[0], range.lower[1], range.lower[2]),
+              cv::Scalar(range.upper[0], range.upper[1], range.upper[2]), mask);
+  for (auto _ : state) benchmark::DoNotOptimize(detail::reference_contours(mask).size());
+}
+BENCHMARK(BM_ColourRasterReference)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace freeplay::sim

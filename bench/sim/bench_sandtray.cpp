@@ -7,6 +7,7 @@
 
 #include "freeplay/sim/item_catalogue.hpp"
 #include "freeplay/sim/sandtray.hpp"
+#include "freeplay/sim/zones.hpp"
 
 namespace freeplay::sim {
 namespace {
@@ -76,6 +77,51 @@ void BM_ShuffleSettle(benchmark::State& state) {
   state.counters["steps_per_settle"] = steps_per_settle / static_cast<double>(std::max<std::int64_t>(1, rounds));
 }
 BENCHMARK(BM_ShuffleSettle)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+}  // namespace freeplay::sim
+
+namespace freeplay::sim {
+namespace {
+
+/// The item snapshot every 10 Hz tick reads (what the children perceive and the robot observes).
+void BM_ItemsSnapshot(benchmark::State& state) {
+  auto tray = settled_freeplay_tray();
+  for (auto _ : state) benchmark::DoNotOptimize(tray->items().size());
+}
+BENCHMARK(BM_ItemsSnapshot);
+
+/// The same into a reused vector (no allocation).
+void BM_ItemsSnapshotReused(benchmark::State& state) {
+  auto tray = settled_freeplay_tray();
+  std::vector<ItemState> snapshot;
+  for (auto _ : state) {
+    tray->items(snapshot);
+    benchmark::DoNotOptimize(snapshot.data());
+  }
+}
+BENCHMARK(BM_ItemsSnapshotReused);
+
+/// One 10 Hz tick with a child's finger drawing (stroke extension on the 960 px episode raster, then the game step;
+/// the background is republished and segmented at the next 4 Hz poll after the stroke ends).
+void BM_DrawingTick(benchmark::State& state) {
+  SandtrayConfig config;
+  config.raster_width_px = 960;
+  Sandtray tray(catalogue(), config, Rng(2));
+  tray.signal(Signal::StartFreeplay);
+  tray.select_colour(PaletteColour::Blue);
+  int k = 0;
+  for (auto _ : state) {
+    if (k % 20 == 0) tray.touch_down(1, {0.05 + 0.004 * (k % 100), -0.1});
+    const double t = 0.1 * k;
+    tray.touch_move(1, {0.05 + 0.004 * (k % 100) + 0.02 * std::sin(t), -0.1 - 0.05 * std::cos(0.7 * t)});
+    if (k % 20 == 19) tray.touch_up(1);
+    tray.step(0.1);
+    ++k;
+  }
+  state.counters["segmentations_per_tick"] = static_cast<double>(tray.zone_counters().images) / k;
+}
+BENCHMARK(BM_DrawingTick)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace freeplay::sim

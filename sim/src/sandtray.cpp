@@ -246,8 +246,9 @@ struct Sandtray::Impl {
     return best;
   }
 
-  std::vector<Holder> holders_of(int index) const {
-    std::vector<Holder> out;
+  // Everyone dragging item `index` (fingers ascending, then the robot) into `out`, reusing its storage.
+  void holders_into(int index, std::vector<Holder>& out) const {
+    out.clear();
     for (int f = 1; f <= kMaxTouches; ++f) {
       const Finger& finger = fingers[static_cast<std::size_t>(f)];
       if (finger.down && finger.mode == FingerMode::Item && finger.item == index) {
@@ -255,7 +256,23 @@ struct Sandtray::Impl {
       }
     }
     if (robot.item == index) out.push_back(Holder{Holder::Kind::Robot, 0});
+  }
+
+  std::vector<Holder> holders_of(int index) const {
+    std::vector<Holder> out;
+    holders_into(index, out);
     return out;
+  }
+
+  // Writes item `index`'s published state into `s`, reusing its storage.
+  void state_into(std::size_t index, ItemState& s) const {
+    const Item& item = items[index];
+    s.name = item.spec->name;
+    s.pose = pose_of(item);
+    s.z = item.z;
+    s.visible = item.visible;
+    holders_into(static_cast<int>(index), s.holders);
+    s.holder = s.holders.empty() ? Holder{} : s.holders.front();
   }
 
   static nlohmann::json holder_json(const Holder& holder) {
@@ -759,23 +776,19 @@ bool Sandtray::asleep() const { return impl_->all_asleep(); }
 
 std::vector<ItemState> Sandtray::items() const {
   std::vector<ItemState> out;
-  out.reserve(impl_->items.size());
-  for (std::size_t i = 0; i < impl_->items.size(); ++i) {
-    const auto& item = impl_->items[i];
-    ItemState s;
-    s.name = item.spec->name;
-    s.pose = impl_->pose_of(item);
-    s.z = item.z;
-    s.visible = item.visible;
-    s.holders = impl_->holders_of(static_cast<int>(i));
-    if (!s.holders.empty()) s.holder = s.holders.front();
-    out.push_back(std::move(s));
-  }
+  items(out);
   return out;
 }
 
+void Sandtray::items(std::vector<ItemState>& out) const {
+  out.resize(impl_->items.size());
+  for (std::size_t i = 0; i < impl_->items.size(); ++i) impl_->state_into(i, out[i]);
+}
+
 ItemState Sandtray::item(const std::string& name) const {
-  return items()[impl_->catalogue->index_of(name)];
+  ItemState s;
+  impl_->state_into(impl_->catalogue->index_of(name), s);
+  return s;
 }
 
 std::vector<TouchState> Sandtray::touches() const {

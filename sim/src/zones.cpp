@@ -6,11 +6,13 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <numeric>
 #include <string>
 
 #include <opencv2/imgproc.hpp>
 
 #include "freeplay/core/error.hpp"
+#include "freeplay/sim/zone_raster.hpp"
 
 namespace freeplay::sim {
 namespace {
@@ -44,31 +46,35 @@ const ColourRange& range_of(std::string_view colour) {
   throw InputError("unknown zone colour '" + std::string(colour) + "'", "colour", colour_list());
 }
 
-/// The real node's colour mask of the downsampled HSV image.
-void mask_of(const cv::Mat& small_hsv, const HsvRange& range, cv::Mat& mask) {
-  cv::inRange(small_hsv, cv::Scalar(range.lower[0], range.lower[1], range.lower[2]),
-              cv::Scalar(range.upper[0], range.upper[1], range.upper[2]), mask);
-}
-
-/// The real node's mask → contour steps (opening, dilation, distance-transform threshold, contours).
-std::vector<std::vector<cv::Point>> contours_of(const cv::Mat& colour_mask) {
-  static const cv::Mat kernel = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(3, 3));
-  cv::Mat mask;
-  cv::morphologyEx(colour_mask, mask, cv::MORPH_OPEN, kernel, cv::Point(-1, -1), 2);
-  if (cv::countNonZero(mask) == 0) return {};  // nothing of this colour: the remaining steps find no contour
-  cv::dilate(mask, mask, kernel);
-  cv::Mat distance;
-  cv::distanceTransform(mask, distance, cv::DIST_L2, cv::DIST_MASK_5);
-  double max_distance = 0.0;
-  cv::minMaxLoc(distance, nullptr, &max_distance);
-  cv::Mat foreground;
-  cv::threshold(distance, foreground, 0.25 * max_distance, 255.0, cv::THRESH_BINARY);
-  foreground.convertTo(foreground, CV_8U);
-  cv::dilate(foreground, foreground, kernel, cv::Point(-1, -1), 2);
-  std::vector<std::vector<cv::Point>> contours;
-  std::vector<cv::Vec4i> hierarchy;
-  cv::findContours(foreground, contours, hierarchy, cv::RETR_TREE, cv::CHAIN_APPROX_TC89_KCOS);
-  return contours;
+/// Bounding box of the pixels where two images of one size and type differ (empty when none).
+cv::Rect differing_rect(const cv::Mat& a, const cv::Mat& b) {
+  const std::size_t row_bytes = static_cast<std::size_t>(a.cols) * a.elemSize();
+  int y0 = -1, y1 = -1;
+  for (int y = 0; y < a.rows; ++y) {
+    if (std::memcmp(a.ptr(y), b.ptr(y), row_bytes) == 0) continue;
+    if (y0 < 0) y0 = y;
+    y1 = y;
+  }
+  if (y0 < 0) return {};
+  const int channels = static_cast<int>(a.elemSize());
+  int x0 = a.cols, x1 = -1;
+  for (int y = y0; y <= y1; ++y) {
+    const unsigned char* p = a.ptr(y);
+    const unsigned char* q = b.ptr(y);
+    for (int x = 0; x < x0; ++x) {
+      if (std::memcmp(p + x * channels, q + x * channels, static_cast<std::size_t>(channels)) != 0) {
+        x0 = x;
+        break;
+      }
+    }
+    for (int x = a.cols - 1; x > x1; --x) {
+      if (std::memcmp(p + x * channels, q + x * channels, static_cast<std::size_t>(channels)) != 0) {
+        x1 = x;
+        break;
+      }
+    }
+  }
+  return {x0, y0, x1 - x0 + 1, y1 - y0 + 1};
 }
 
 bool same_pixels(const cv::Mat& a, const cv::Mat& b) {
@@ -139,6 +145,36 @@ std::vector<char> rows_read_by_resize(int rows, int height) {
   return needed;
 }
 
+/// Rows of the downsampled image that a bilinear resize of a band of source rows alone gives exactly as the whole
+/// resize does (the same scale, taps inside the band), or all rows when no smaller band does. Checked once on a
+/// random image, so an OpenCV whose rounding differs falls back to whole resizes.
+int resize_band_rows(const cv::Size& source, const cv::Size& small) {
+  thread_local cv::Size checked_source;
+  thread_local cv::Size checked_small;
+  thread_local int checked_rows = 0;
+  if (source == checked_source && small == checked_small) return checked_rows;
+  checked_source = source;
+  checked_small = small;
+  checked_rows = small.height;
+  const int g = std::gcd(source.height, small.height);
+  const int band_rows = small.height / g;
+  const int source_rows = source.height / g;
+  if (band_rows == small.height) return checked_rows;
+  cv::Mat image(source, CV_8UC3);
+  cv::RNG rng(17);
+  rng.fill(image, cv::RNG::UNIFORM, 0, 256);
+  cv::Mat whole_resize;
+  cv::resize(image, whole_resize, small, 0, 0, cv::INTER_LINEAR);
+  cv::Mat banded(small, CV_8UC3);
+  for (int band = 0; band < g; ++band) {
+    cv::Mat target = banded.rowRange(band * band_rows, (band + 1) * band_rows);
+    cv::resize(image.rowRange(band * source_rows, (band + 1) * source_rows), target, target.size(), 0, 0,
+               cv::INTER_LINEAR);
+  }
+  if (cv::norm(whole_resize, banded, cv::NORM_INF) == 0.0) checked_rows = band_rows;
+  return checked_rows;
+}
+
 }  // namespace
 
 HsvRange zone_hsv_range(std::string_view colour) { return range_of(colour).range; }
@@ -157,7 +193,46 @@ std::array<unsigned char, 3> zone_marker_rgb(std::string_view colour) {
 }
 
 ZoneMap ZoneMap::segment(const cv::Mat& bgr, double metres_per_pixel) {
-  return ZoneSegmenter().segment(bgr, metres_per_pixel);
+  if (bgr.empty()) throw InputError("the image is empty", "image", "a BGR CV_8UC3 image");
+  if (bgr.type() != CV_8UC3) {
+    throw InputError("the image has OpenCV type " + std::to_string(bgr.type()), "image", "a BGR CV_8UC3 image");
+  }
+  if (!(metres_per_pixel > 0.0) || !std::isfinite(metres_per_pixel)) {
+    throw InputError("metres per pixel must be positive", "metres_per_pixel", "> 0");
+  }
+  const int small_height =
+      std::max(1, static_cast<int>(std::lround(static_cast<double>(bgr.rows) * kZoneSegmentationWidthPx / bgr.cols)));
+  cv::Mat hsv;
+  cv::cvtColor(bgr, hsv, cv::COLOR_BGR2HSV);
+  cv::Mat small_hsv;
+  cv::resize(hsv, small_hsv, cv::Size(kZoneSegmentationWidthPx, small_height), 0, 0, cv::INTER_LINEAR);
+  const double scale_x = static_cast<double>(bgr.cols) / kZoneSegmentationWidthPx;
+  const double scale_y = static_cast<double>(bgr.rows) / small_height;
+  ZoneMap map;
+  for (const auto& entry : kRanges) {
+    cv::Mat mask;
+    cv::inRange(small_hsv, cv::Scalar(entry.range.lower[0], entry.range.lower[1], entry.range.lower[2]),
+                cv::Scalar(entry.range.upper[0], entry.range.upper[1], entry.range.upper[2]), mask);
+    map.add_zones(entry.colour, detail::reference_contours(mask), scale_x, scale_y, metres_per_pixel);
+  }
+  return map;
+}
+
+void ZoneMap::add_zones(std::string_view colour, const std::vector<std::vector<cv::Point>>& contours, double scale_x,
+                        double scale_y, double metres_per_pixel) {
+  int id = 0;
+  for (const auto& contour : contours) {
+    Zone zone;
+    zone.colour = std::string(colour);
+    zone.id = id++;
+    zone.polygon.reserve(contour.size());
+    for (const auto& p : contour) {
+      zone.polygon.emplace_back(p.x * scale_x * metres_per_pixel, -p.y * scale_y * metres_per_pixel);
+    }
+    zone.centroid = vertex_mean(zone.polygon);
+    zone.area_m2 = std::abs(signed_area(zone.polygon));
+    zones_.push_back(std::move(zone));
+  }
 }
 
 // BGR → HSV, then a bilinear resize (the real node's order). Bilinear interpolation reads only the two source rows
@@ -179,6 +254,43 @@ void ZoneSegmenter::convert_rows(const cv::Mat& bgr, const cv::Rect& region) {
   }
 }
 
+ZoneSegmenter::ZoneSegmenter() {
+  for (auto& raster : rasters_) raster = std::make_unique<detail::ColourRaster>();
+}
+
+ZoneSegmenter::~ZoneSegmenter() = default;
+
+std::array<cv::Rect, kZoneColours.size()> ZoneSegmenter::update_masks(const cv::Rect& region) {
+  constexpr std::size_t kColours = kZoneColours.size();
+  std::array<cv::Point, kColours> low;
+  std::array<cv::Point, kColours> high;
+  low.fill({region.x + region.width, region.y + region.height});
+  high.fill({-1, -1});
+  std::array<unsigned char*, kColours> rows{};
+  for (int y = region.y; y < region.y + region.height; ++y) {
+    const auto* hsv = small_hsv_.ptr<cv::Vec3b>(y);
+    for (std::size_t c = 0; c < kColours; ++c) rows[c] = rasters_[c]->mask().ptr<unsigned char>(y);
+    for (int x = region.x; x < region.x + region.width; ++x) {
+      const cv::Vec3b p = hsv[x];
+      for (std::size_t c = 0; c < kColours; ++c) {
+        const HsvRange& r = kRanges[c].range;
+        const bool inside = r.lower[0] <= p[0] && p[0] <= r.upper[0] && r.lower[1] <= p[1] && p[1] <= r.upper[1] &&
+                            r.lower[2] <= p[2] && p[2] <= r.upper[2];
+        const unsigned char value = inside ? 255 : 0;  // cv::inRange
+        if (rows[c][x] == value) continue;
+        rows[c][x] = value;
+        low[c] = {std::min(low[c].x, x), std::min(low[c].y, y)};
+        high[c] = {std::max(high[c].x, x), std::max(high[c].y, y)};
+      }
+    }
+  }
+  std::array<cv::Rect, kColours> changed;
+  for (std::size_t c = 0; c < kColours; ++c) {
+    if (high[c].x >= 0) changed[c] = cv::Rect(low[c], high[c] + cv::Point(1, 1));
+  }
+  return changed;
+}
+
 ZoneMap ZoneSegmenter::segment(const cv::Mat& bgr, double metres_per_pixel, std::optional<cv::Rect> changed) {
   if (bgr.empty()) throw InputError("the image is empty", "image", "a BGR CV_8UC3 image");
   if (bgr.type() != CV_8UC3) {
@@ -190,50 +302,67 @@ ZoneMap ZoneSegmenter::segment(const cv::Mat& bgr, double metres_per_pixel, std:
   const int small_height =
       std::max(1, static_cast<int>(std::lround(static_cast<double>(bgr.rows) * kZoneSegmentationWidthPx / bgr.cols)));
   const cv::Rect whole(0, 0, bgr.cols, bgr.rows);
+  const cv::Size small_size(kZoneSegmentationWidthPx, small_height);
   if (hsv_.size() != bgr.size()) {
     hsv_ = cv::Mat::zeros(bgr.size(), CV_8UC3);
     needed_ = rows_read_by_resize(bgr.rows, small_height);
+    band_rows_ = resize_band_rows(bgr.size(), small_size);
     changed = whole;
   }
-  convert_rows(bgr, changed ? (*changed & whole) : whole);
-  cv::resize(hsv_, small_hsv_, cv::Size(kZoneSegmentationWidthPx, small_height), 0, 0, cv::INTER_LINEAR);
+  const cv::Rect converted = changed ? (*changed & whole) : whole;
+  convert_rows(bgr, converted);
+  if (small_hsv_.size() != small_size) {
+    std::swap(small_hsv_, previous_small_);
+    cv::resize(hsv_, small_hsv_, small_size, 0, 0, cv::INTER_LINEAR);
+  } else {
+    // Only the bands of rows whose source rows were converted again.
+    small_hsv_.copyTo(previous_small_);
+    const int bands = small_height / band_rows_;
+    const int source_rows = bgr.rows / bands;
+    for (int band = converted.y / source_rows; band < bands && band * source_rows < converted.y + converted.height;
+         ++band) {
+      cv::Mat target = small_hsv_.rowRange(band * band_rows_, (band + 1) * band_rows_);
+      cv::resize(hsv_.rowRange(band * source_rows, (band + 1) * source_rows), target, target.size(), 0, 0,
+                 cv::INTER_LINEAR);
+    }
+  }
   const double scale_x = static_cast<double>(bgr.cols) / kZoneSegmentationWidthPx;
   const double scale_y = static_cast<double>(bgr.rows) / small_height;
   ++counters_.images;
 
+  // The masks change only where the downsampled image did.
+  const cv::Rect small_whole(cv::Point(0, 0), small_size);
+  cv::Rect region = small_whole;
+  if (previous_small_.size() == small_size && rasters_[0]->mask().size() == small_size) {
+    region = differing_rect(small_hsv_, previous_small_);
+  } else {
+    for (auto& raster : rasters_) raster->resize(small_size);
+  }
+  const auto mask_changes = update_masks(region);
+  // A new background: the masks its thread saw recently are not segmented again.
+  const bool whole_new = region.area() * 2 >= small_whole.area();
+  thread_local MaskMemo memo;
+
   ZoneMap map;
   for (std::size_t c = 0; c < kRanges.size(); ++c) {
-    const auto& entry = kRanges[c];
-    auto& cached = cache_[c];
-    mask_of(small_hsv_, entry.range, mask_);
-    if (same_pixels(mask_, cached.mask)) {
+    auto& raster = *rasters_[c];
+    if (mask_changes[c].empty()) {
       ++counters_.masks_reused;
+    } else if (!whole_new) {
+      ++counters_.masks_recomputed;
+      raster.update(mask_changes[c], counters_);
     } else {
-      thread_local MaskMemo memo;
-      mask_.copyTo(cached.mask);
-      const std::uint64_t hash = hash_of(cached.mask);
-      if (const auto* known = memo.find(hash, cached.mask)) {
+      const std::uint64_t hash = hash_of(raster.mask());
+      if (const auto* known = memo.find(hash, raster.mask())) {
         ++counters_.masks_reused;
-        cached.contours = *known;
+        raster.adopt(*known);
       } else {
         ++counters_.masks_recomputed;
-        cached.contours = contours_of(cached.mask);
-        memo.add(hash, cached.mask, cached.contours);
+        raster.update(small_whole, counters_);
+        memo.add(hash, raster.mask(), raster.contours());
       }
     }
-    int id = 0;
-    for (const auto& contour : cached.contours) {
-      Zone zone;
-      zone.colour = std::string(entry.colour);
-      zone.id = id++;
-      zone.polygon.reserve(contour.size());
-      for (const auto& p : contour) {
-        zone.polygon.emplace_back(p.x * scale_x * metres_per_pixel, -p.y * scale_y * metres_per_pixel);
-      }
-      zone.centroid = vertex_mean(zone.polygon);
-      zone.area_m2 = std::abs(signed_area(zone.polygon));
-      map.zones_.push_back(std::move(zone));
-    }
+    map.add_zones(kRanges[c].colour, raster.contours(), scale_x, scale_y, metres_per_pixel);
   }
   return map;
 }

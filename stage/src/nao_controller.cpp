@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 
 #include "freeplay/core/error.hpp"
 #include "freeplay/stage/pan_tilt.hpp"
@@ -39,7 +38,17 @@ class ArmChain {
       if (body == nao.rshoulder_body) break;
     }
     std::reverse(bodies_.begin(), bodies_.end());
-    for (size_t c = 0; c < kRightArm.size(); ++c) column_of_joint_[nao.joint[static_cast<size_t>(kRightArm[c])]] = static_cast<int>(c);
+    // The Jacobian column of each hinge along the chain (-1: not a pointing joint).
+    columns_.fill(-1);
+    size_t hinge = 0;
+    for (const int body : bodies_) {
+      for (int j = m->body_jntadr[body]; j < m->body_jntadr[body] + m->body_jntnum[body] && hinge < kMaxBodies; ++j) {
+        for (size_t c = 0; c < kRightArm.size(); ++c) {
+          if (nao.joint[static_cast<size_t>(kRightArm[c])] == j) columns_[hinge] = static_cast<int>(c);
+        }
+        ++hinge;
+      }
+    }
   }
 
   // The body the chain hangs from (the shoulder's parent).
@@ -64,7 +73,6 @@ class ArmChain {
         pos = anchor - quat * local_anchor;
         anchors_[static_cast<size_t>(hinges)] = anchor;
         axes_[static_cast<size_t>(hinges)] = quat * local_axis;
-        joints_[static_cast<size_t>(hinges)] = j;
         ++hinges;
       }
       quat.normalize();
@@ -73,9 +81,9 @@ class ArmChain {
     if (jacobian != nullptr) {
       jacobian->setZero();
       for (int h = 0; h < hinges; ++h) {
-        const auto it = column_of_joint_.find(joints_[static_cast<size_t>(h)]);
-        if (it == column_of_joint_.end()) continue;
-        jacobian->col(it->second) = axes_[static_cast<size_t>(h)].cross(tip - anchors_[static_cast<size_t>(h)]);
+        const int column = columns_[static_cast<size_t>(h)];
+        if (column < 0) continue;
+        jacobian->col(column) = axes_[static_cast<size_t>(h)].cross(tip - anchors_[static_cast<size_t>(h)]);
       }
     }
     return tip;
@@ -96,10 +104,9 @@ class ArmChain {
   const mjModel* m_;
   int site_;
   std::vector<int> bodies_;
-  std::map<int, int> column_of_joint_;
+  std::array<int, kMaxBodies> columns_{};
   std::array<Vector3d, kMaxBodies> anchors_{};
   std::array<Vector3d, kMaxBodies> axes_{};
-  std::array<int, kMaxBodies> joints_{};
 };
 
 NaoController::NaoController(Stage& stage) : stage_(stage), nao_(stage.model().nao()) {

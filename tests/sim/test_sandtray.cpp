@@ -354,6 +354,10 @@ TEST(Sandtray, TicksWithoutInputRecomputeNoRaster) {
   EXPECT_EQ(tray->background_version(), version);
   EXPECT_EQ(tray->zone_counters().images, before.images);
   EXPECT_EQ(tray->zone_counters().masks_recomputed, before.masks_recomputed);
+  EXPECT_EQ(tray->zone_counters().rasters_full, before.rasters_full);
+  EXPECT_EQ(tray->zone_counters().rasters_windowed, before.rasters_windowed);
+  EXPECT_EQ(tray->zone_counters().contour_searches, before.contour_searches);
+  EXPECT_EQ(tray->zone_counters().distance_pixels, before.distance_pixels);
   // A stroke changes the background: one more segmentation at the next 4 Hz poll, reusing unchanged masks.
   tray->select_colour(PaletteColour::Red);
   tray->touch_down(1, {0.30, -0.15});
@@ -590,6 +594,45 @@ TEST(SandtrayScreenImage, RendersTheScreenAtTheRequestedWidth) {
   EXPECT_EQ(screen.type(), CV_8UC3);
   EXPECT_EQ(tray->background().cols, 240) << "the published background has the raster width";
   EXPECT_GT(tray->zones().zones().size(), 0U) << "the map background has colour zones";
+}
+
+}  // namespace
+}  // namespace freeplay::sim
+
+namespace freeplay::sim {
+namespace {
+
+// The tick's item snapshot into a reused vector equals items() and, once sized, keeps its storage (no allocation).
+TEST(Sandtray, ItemSnapshotIntoAReusedVectorKeepsItsStorage) {
+  auto tray = make_tray(5);
+  tray->signal(Signal::StartFreeplay);
+  tray->signal(Signal::ShuffleItems);
+  tray->step(0.5);
+  const auto target = tray->items().front();
+  tray->touch_down(1, target.pose.position());
+  tray->touch_down(2, target.pose.position());
+  std::vector<ItemState> snapshot;
+  tray->items(snapshot);
+  const ItemState* storage = snapshot.data();
+  const Holder* holders = snapshot.front().holders.data();
+  ASSERT_EQ(snapshot.front().holders.size(), 2u);
+  for (int tick = 0; tick < 10; ++tick) {
+    tray->touch_move(1, target.pose.position() + Vec2(0.002 * tick, 0.0));
+    tray->step(0.1);
+    tray->items(snapshot);
+    const auto fresh = tray->items();
+    ASSERT_EQ(snapshot.size(), fresh.size());
+    for (std::size_t i = 0; i < fresh.size(); ++i) {
+      EXPECT_EQ(snapshot[i].name, fresh[i].name);
+      EXPECT_EQ(snapshot[i].pose.x, fresh[i].pose.x);
+      EXPECT_EQ(snapshot[i].pose.theta, fresh[i].pose.theta);
+      EXPECT_EQ(snapshot[i].holders, fresh[i].holders);
+      EXPECT_EQ(snapshot[i].holder, fresh[i].holder);
+    }
+    EXPECT_EQ(snapshot.data(), storage);
+    EXPECT_EQ(snapshot.front().holders.data(), holders);
+  }
+  EXPECT_EQ(tray->item(target.name).holders, snapshot.front().holders);
 }
 
 }  // namespace

@@ -147,6 +147,8 @@ class Sandtray {
   // --- state out --------------------------------------------------------------------------------------------
   /// Every item's state, in catalogue order.
   std::vector<ItemState> items() const;
+  /// The same into `out`, reusing its storage (no allocation once `out` has held a snapshot: for the 10 Hz tick).
+  void items(std::vector<ItemState>& out) const;
   /// One item's state; throws InputError naming the allowed items when unknown.
   ItemState item(const std::string& name) const;
   /// Active fingers.

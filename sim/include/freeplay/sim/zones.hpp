@@ -4,6 +4,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -46,17 +47,25 @@ struct ZoneSegmenterCounters {
   std::uint64_t images = 0;            ///< images segmented
   std::uint64_t masks_recomputed = 0;  ///< colour masks segmented (new to this segmenter and its thread's memo)
   std::uint64_t masks_reused = 0;      ///< colour masks unchanged since the last image, or seen before: reused
+  std::uint64_t rasters_full = 0;      ///< colour pipelines recomputed on the whole image
+  std::uint64_t rasters_windowed = 0;  ///< colour pipelines updated only around the changed pixels
+  std::uint64_t contour_searches = 0;  ///< contour searches (only when a colour's foreground changed)
+  std::uint64_t distance_pixels = 0;   ///< pixels whose distance to the colour's border was recomputed
 };
 
 class ZoneSegmenter;
+namespace detail {
+class ColourRaster;
+}
 
 /// The zones of one background image (immutable once built).
 class ZoneMap {
  public:
   /// No zones.
   ZoneMap() = default;
-  /// Segments a BGR CV_8UC3 image with the real pipeline; `metres_per_pixel` of the full-resolution image.
-  /// Throws InputError on an empty image, another type, or a non-positive scale.
+  /// Segments a BGR CV_8UC3 image with the real pipeline (the real node's OpenCV calls on the whole image: the
+  /// reference ZoneSegmenter matches); `metres_per_pixel` of the full-resolution image. Throws InputError on an empty
+  /// image, another type, or a non-positive scale.
   static ZoneMap segment(const cv::Mat& bgr, double metres_per_pixel);
 
   /// Every zone, colour by colour in kZoneColours order, ids ascending.
@@ -70,16 +79,24 @@ class ZoneMap {
 
  private:
   friend class ZoneSegmenter;
+  /// Appends one colour's zones from its contours (small-image pixels × scale = full-image pixels) in metres.
+  void add_zones(std::string_view colour, const std::vector<std::vector<cv::Point>>& contours, double scale_x,
+                 double scale_y, double metres_per_pixel);
   std::vector<Zone> zones_;
 };
 
 /// Segments a sequence of backgrounds, redoing a colour's morphology, distance transform and contours only when
-/// that colour's mask changed since the previous image (a stroke usually changes one or two of the seven masks) and
-/// is not among the masks its thread segmented recently. The zones are identical to ZoneMap::segment's.
+/// that colour's mask changed since the previous image (a stroke changes a few of the seven masks), and
+/// then only around the changed pixels; a whole new background reuses the masks its thread segmented recently. The
+/// zones are identical to ZoneMap::segment's.
 class ZoneSegmenter {
  public:
   /// Counts of the work done so far.
   using Counters = ZoneSegmenterCounters;
+  ZoneSegmenter();
+  ~ZoneSegmenter();
+  ZoneSegmenter(const ZoneSegmenter&) = delete;
+  ZoneSegmenter& operator=(const ZoneSegmenter&) = delete;
 
   /// Same checks and result as ZoneMap::segment. With `changed`, the caller promises that `bgr` differs from the
   /// previous image only inside that rectangle, and only those pixels are converted to HSV again.
@@ -88,18 +105,17 @@ class ZoneSegmenter {
   const Counters& counters() const { return counters_; }
 
  private:
-  struct Cached {
-    cv::Mat mask;                                  // the colour's inRange mask of the previous image
-    std::vector<std::vector<cv::Point>> contours;  // its contours (small-image pixels)
-  };
   /// Converts the rows of `bgr` that the bilinear downsampling reads (inside `region`) into hsv_.
   void convert_rows(const cv::Mat& bgr, const cv::Rect& region);
+  /// Writes every colour's mask inside `region` of small_hsv_; returns each colour's changed bounding box.
+  std::array<cv::Rect, kZoneColours.size()> update_masks(const cv::Rect& region);
 
-  std::array<Cached, kZoneColours.size()> cache_;
+  std::array<std::unique_ptr<detail::ColourRaster>, kZoneColours.size()> rasters_;
   cv::Mat hsv_;                 // full-size HSV image; only the rows the downsampling reads are kept up to date
   std::vector<char> needed_;    // rows of hsv_ the downsampling reads
-  cv::Mat small_hsv_;
-  cv::Mat mask_;
+  cv::Mat small_hsv_;           // the downsampled HSV image
+  cv::Mat previous_small_;      // the one before (the masks change only where they differ)
+  int band_rows_ = 0;           // rows of small_hsv_ resized together (a band of source rows resizes alone exactly)
   Counters counters_;
 };
 
