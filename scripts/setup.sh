@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config git ccache
   libmujoco-dev libmujoco-samples libosmesa6-dev libegl-dev
-  libbox2d-dev libompl-dev libopencv-dev libeigen3-dev libyaml-cpp-dev
+  libbox2d-dev libompl-dev libopencv-dev libopencv-contrib-dev libeigen3-dev libyaml-cpp-dev
   libgtest-dev libgmock-dev libbenchmark-dev libbenchmark-tools
   libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev libboost-math-dev
   librosbag-storage-dev libsensor-msgs-dev libtf2-msgs-dev libgeometry-msgs-dev libstd-msgs-dev
