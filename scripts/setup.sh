@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config git ccache
   libmujoco-dev libmujoco-samples libosmesa6-dev libegl-dev
-  libbox2d-dev libompl-dev libopencv-dev libopencv-contrib-dev libeigen3-dev libyaml-cpp-dev
+  libbox2d-dev libompl-dev libopencv-dev libeigen3-dev libyaml-cpp-dev
   libgtest-dev libgmock-dev libbenchmark-dev libbenchmark-tools
   libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev libboost-math-dev
   librosbag-storage-dev libsensor-msgs-dev libtf2-msgs-dev libgeometry-msgs-dev libstd-msgs-dev
@@ -19,6 +19,7 @@ packages=(
   python3-visualization-msgs python3-actionlib-msgs python3-nav-msgs
   zlib1g-dev linux-perf valgrind
   clang libclang-rt-14-dev
+  libopencv-contrib-dev  # ArUco markers for the fiducial localisation (localisation/)
 )
 for arg in "$@"; do
   case "$arg" in
