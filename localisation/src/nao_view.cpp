@@ -13,6 +13,15 @@ Eigen::Isometry3d sandtray_T_odom(const stage::StageModel& model) {
   return pose;
 }
 
+Eigen::Isometry3d odom_T_shoulder(const stage::Stage& stage) {
+  const mjData* d = stage.data();
+  const int shoulder = stage.model().nao().rshoulder_body;
+  Eigen::Isometry3d sandtray_T_shoulder = Eigen::Isometry3d::Identity();
+  sandtray_T_shoulder.translation() = Eigen::Map<const Eigen::Vector3d>(d->xpos + 3 * shoulder);
+  sandtray_T_shoulder.linear() = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(d->xmat + 9 * shoulder);
+  return sandtray_T_odom(stage.model()).inverse() * sandtray_T_shoulder;
+}
+
 NaoCameraView nao_camera_view(stage::Renderer& renderer, const stage::Stage& stage, std::string_view camera) {
   const Eigen::Isometry3d odom_T_sandtray = sandtray_T_odom(stage.model()).inverse();
   stage::FramePack frame = renderer.render(stage, camera);
@@ -20,12 +29,7 @@ NaoCameraView nao_camera_view(stage::Renderer& renderer, const stage::Stage& sta
   view.image = std::move(frame.rgb);
   view.camera = {frame.K.fx, frame.K.fy, frame.K.cx, frame.K.cy};
   view.odom_T_camera = odom_T_sandtray * frame.sandtray_T_camera_optical;
-  const mjData* d = stage.data();
-  const int shoulder = stage.model().nao().rshoulder_body;
-  Eigen::Isometry3d sandtray_T_shoulder = Eigen::Isometry3d::Identity();
-  sandtray_T_shoulder.translation() = Eigen::Map<const Eigen::Vector3d>(d->xpos + 3 * shoulder);
-  sandtray_T_shoulder.linear() = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(d->xmat + 9 * shoulder);
-  view.odom_T_shoulder = odom_T_sandtray * sandtray_T_shoulder;
+  view.odom_T_shoulder = odom_T_shoulder(stage);
   view.odom_T_sandtray_truth = odom_T_sandtray;
   return view;
 }

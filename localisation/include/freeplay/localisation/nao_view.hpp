@@ -28,6 +28,9 @@ struct NaoCameraView {
 /// (the simulated NAO never walks, so odom stays where it stands). Throws InputError for a scene without a NAO.
 Eigen::Isometry3d sandtray_T_odom(const stage::StageModel& model);
 
+/// Where the NAO's RShoulder (the real node's `arm_reach_origin_frame`) is in `odom` for the stage's current pose.
+Eigen::Isometry3d odom_T_shoulder(const stage::Stage& stage);
+
 /// Renders `camera` of the (kinematically up-to-date) `stage` and fills in the robot's kinematic frames.
 NaoCameraView nao_camera_view(stage::Renderer& renderer, const stage::Stage& stage,
                               std::string_view camera = kNaoLocalisationCamera);
