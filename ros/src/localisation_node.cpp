@@ -27,6 +27,8 @@ ServedLocalisation::ServedLocalisation(localisation::LocaliserSettings settings,
 
 ServedLocalisation::~ServedLocalisation() = default;
 
+const stage::Stage* ServedLocalisation::stage() const { return stage_ ? &stage_->mirror->stage() : nullptr; }
+
 bool ServedLocalisation::on_signal(const std::string& name, double t) {
   if (name != kLocalisingSignal) return false;
   display_.on_signal(t);
@@ -49,14 +51,15 @@ std::vector<std::string> ServedLocalisation::observe(const runner::EpisodeSnapsh
     stage_->renderer = std::make_unique<stage::Renderer>(model, options);
   }
   if (stage_ == nullptr) return localiser_.take_speech();
-  if (show != markers_on_screen_) {
+  const bool toggled = show != markers_on_screen_;
+  if (toggled) {
     markers_on_screen_ = show;
     spdlog::info("sandtray: fiducial markers {}", show ? "shown" : "hidden");
     stage_->mirror->set_screen_overlay(show ? [](cv::Mat& bgr) { localisation::draw_marker_field(bgr); }
                                             : std::function<void(cv::Mat&)>{});
   }
   const bool looking = localiser_.looking();
-  stage_->mirror->pose(snapshot, false, looking || show);
+  stage_->mirror->pose(snapshot, false, looking || show || toggled);
   if (looking) {
     const auto view = localisation::nao_camera_view(*stage_->renderer, stage_->mirror->stage());
     if (localiser_.on_frame(snapshot.t, view.image, view.camera, view.odom_T_camera)) {

@@ -33,6 +33,10 @@ class ServedLocalisation {
   std::vector<std::string> observe(const runner::EpisodeSnapshot& snapshot, std::vector<ros_graph::Transform>& frames);
   /// True once this node publishes `arm_reach` (localised, shoulder within reach): nobody else should.
   bool publishes_arm_reach() const { return publishes_arm_reach_; }
+  /// True while the game shows the marker field (the 5 s after a signal, seen at the last tick).
+  bool markers_on_screen() const { return markers_on_screen_; }
+  /// The simulated NAO's stage (built at the first signal; null before).
+  const stage::Stage* stage() const;
   /// The node's state (for tests and logs).
   const localisation::Localiser& localiser() const { return localiser_; }
 
