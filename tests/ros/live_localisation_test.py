@@ -99,6 +99,8 @@ def main():
             print("---- serve log (last 40 lines) ----")
             print("\n".join(g.log("serve").splitlines()[-40:]))
             raise
+        g.stop()
+        print("serve timing:", next((l for l in reversed(g.log("serve").splitlines()) if '"timing"' in l), "?"))
     print("localisation: ok")
 
 
