@@ -3,15 +3,17 @@
 
 #include <fmt/format.h>
 
-#include <opencv2/aruco.hpp>
 #include <opencv2/core/version.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "freeplay/core/error.hpp"
-
 #if CV_VERSION_MAJOR > 4 || (CV_VERSION_MAJOR == 4 && CV_VERSION_MINOR >= 7)
 #define FREEPLAY_ARUCO_DETECTOR_API 1  // cv::aruco::ArucoDetector, generateImageMarker, Dictionary by value
+#include <opencv2/objdetect/aruco_detector.hpp>
+#else
+#include <opencv2/aruco.hpp>
 #endif
+
+#include "freeplay/core/error.hpp"
 
 namespace freeplay::localisation {
 namespace {
