@@ -19,6 +19,7 @@ packages=(
   python3-visualization-msgs python3-actionlib-msgs python3-nav-msgs
   zlib1g-dev linux-perf valgrind
   clang libclang-rt-14-dev
+  libopencv-contrib-dev  # ArUco markers for the fiducial localisation (localisation/)
 )
 for arg in "$@"; do
   case "$arg" in

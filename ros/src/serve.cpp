@@ -18,6 +18,8 @@
 #include "freeplay/runner/scenario.hpp"
 #include "freeplay/sim/screen.hpp"
 #include "freeplay/ros/graph_messages.hpp"
+#include "freeplay/ros/localisation_node.hpp"
+#include "freeplay/runner/camera_rig.hpp"
 
 namespace freeplay::ros_live {
 
@@ -49,9 +51,16 @@ class LivePublisher final : public runner::EpisodeObserver {
     auto frames = game_frames(*s.tray);
     const auto links = camera_links();
     frames.insert(frames.end(), links.begin(), links.end());
-    if (reach_) frames.push_back(arm_reach_frame(*reach_));
+    if (reach_ && (localisation_ == nullptr || !localisation_->publishes_arm_reach())) {
+      frames.push_back(arm_reach_frame(*reach_));
+    }
     g.tf(stamp, frames);
     lateness_ms_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - due).count());
+    if (localisation_ != nullptr) {  // the simulated NAO's sandtray_localisation node: its own TF message
+      std::vector<ros_graph::Transform> localised;
+      for (const auto& line : localisation_->observe(s, localised)) g.speech(line);
+      if (!localised.empty()) g.tf(stamp, localised);
+    }
     if (!footprints_sent_) {
       g.footprints(stamp, footprint_markers(*s.tray));
       footprints_sent_ = true;
@@ -83,12 +92,16 @@ class LivePublisher final : public runner::EpisodeObserver {
       g.take_point_at();
     }
     for (const auto& name : g.take_signals()) {
+      if (localisation_ != nullptr && localisation_->on_signal(name, s.t)) continue;
       spdlog::info("received sandtray/signals/{} (the served protocol drives the game's stages; not applied)", name);
     }
   }
 
   /// Answers `plan_motion` through `robot` at every tick (`--robot external`).
   void set_planner(GraphRobot* robot) { robot_ = robot; }
+
+  /// Runs the marker display and the NAO's localisation node on `robot_localising` (child-robot episodes).
+  void set_localisation(ServedLocalisation* localisation) { localisation_ = localisation; }
 
   /// Sets the arm-reach disc published as the `arm_reach` frame.
   void set_reach(const runner::ReachDisc& reach) { reach_ = reach; }
@@ -136,6 +149,7 @@ class LivePublisher final : public runner::EpisodeObserver {
   bool sim_robot_;
   std::optional<runner::ReachDisc> reach_;
   GraphRobot* robot_ = nullptr;
+  ServedLocalisation* localisation_ = nullptr;
   std::optional<std::chrono::steady_clock::time_point> start_;
   double t0_ = 0.0;
   bool footprints_sent_ = false;
@@ -281,6 +295,13 @@ runner::EpisodeResult serve(const runner::Scenario& scenario, std::uint64_t seed
   if (child_robot) {
     const auto body = runner::SharedModels::shipped().robot_body(scenario.robot.mode, scenario.robot.arm_reach_m);
     publisher.set_reach(body->reach());
+  }
+  std::unique_ptr<ServedLocalisation> localisation;
+  if (child_robot) {
+    localisation::LocaliserSettings settings;
+    settings.arm_reach_m = scenario.robot.arm_reach_m;
+    localisation = std::make_unique<ServedLocalisation>(settings, runner::renderer_options(scenario.rendering));
+    publisher.set_localisation(localisation.get());
   }
   std::unique_ptr<GraphRobot> robot;
   if (options.external_robot && child_robot) {

@@ -120,8 +120,16 @@ void StageMirror::update_screen(const EpisodeSnapshot& snapshot, bool force) {
   screen_checked_t_ = snapshot.t;
   if (screen_signature_ == signature) return;
   screen_signature_ = signature;
-  stage_.set_screen_image(snapshot.tray->render_screen(width));
+  cv::Mat picture = snapshot.tray->render_screen(width);
+  if (screen_overlay_) screen_overlay_(picture);
+  stage_.set_screen_image(picture);
   ++screen_updates_;
+}
+
+void StageMirror::set_screen_overlay(std::function<void(cv::Mat& bgr)> overlay) {
+  screen_overlay_ = std::move(overlay);
+  screen_signature_.reset();
+  screen_checked_t_ = -1e9;
 }
 
 void StageMirror::pose_robot(const RobotSnapshot& robot) {

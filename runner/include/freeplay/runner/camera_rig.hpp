@@ -3,6 +3,7 @@
 // children's gaze and touches, the live game screen) and rendered at each scenario camera's rate.
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -38,6 +39,10 @@ class StageMirror {
   /// without `screen`, for users that only need the bodies' poses).
   void pose(const EpisodeSnapshot& snapshot, bool force_screen = false, bool screen = true);
 
+  /// Draws `overlay` over every later screen picture (nothing: none), e.g. the marker field the game shows while the
+  /// robot localises; the next `pose` with `screen` replaces the picture even when the game did not change.
+  void set_screen_overlay(std::function<void(cv::Mat& bgr)> overlay);
+
   /// The posed stage (kinematics up to date after `pose`).
   const stage::Stage& stage() const { return stage_; }
   /// How many times the screen texture was replaced.
@@ -54,6 +59,7 @@ class StageMirror {
   std::vector<int> joint_slots_;  // snapshot joint index → NaoJointVector index (-1: not a NAO joint)
   stage::NaoJointVector joints_{};
   std::optional<std::uint64_t> screen_signature_;
+  std::function<void(cv::Mat&)> screen_overlay_;
   double screen_checked_t_ = -1e9;
   int screen_updates_ = 0;
 };
