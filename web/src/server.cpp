@@ -1,0 +1,253 @@
+#include "freeplay/web/server.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <thread>
+#include <websocketpp/config/asio_no_tls.hpp>
+#include <websocketpp/server.hpp>
+
+#include "freeplay/core/error.hpp"
+#include "freeplay/web/assets.hpp"
+
+namespace freeplay::web {
+
+namespace {
+
+using Endpoint = websocketpp::server<websocketpp::config::asio>;
+using Handle = websocketpp::connection_hdl;
+
+std::string decode(std::string_view s) {
+  std::string out;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (s[i] == '+') {
+      out += ' ';
+    } else if (s[i] == '%' && i + 2 < s.size() && std::isxdigit(static_cast<unsigned char>(s[i + 1])) &&
+               std::isxdigit(static_cast<unsigned char>(s[i + 2]))) {
+      out += static_cast<char>(std::stoi(std::string(s.substr(i + 1, 2)), nullptr, 16));
+      i += 2;
+    } else {
+      out += s[i];
+    }
+  }
+  return out;
+}
+
+// Splits a request target into its path and decoded query parameters.
+std::pair<std::string, std::map<std::string, std::string>> split_target(const std::string& target) {
+  const auto q = target.find('?');
+  std::map<std::string, std::string> query;
+  if (q != std::string::npos) {
+    std::string_view rest(target);
+    rest.remove_prefix(q + 1);
+    while (!rest.empty()) {
+      const auto amp = rest.find('&');
+      const auto pair = rest.substr(0, amp);
+      const auto eq = pair.find('=');
+      query[decode(pair.substr(0, eq))] = eq == std::string_view::npos ? "" : decode(pair.substr(eq + 1));
+      if (amp == std::string_view::npos) break;
+      rest.remove_prefix(amp + 1);
+    }
+  }
+  return {decode(target.substr(0, q)), query};
+}
+
+std::string error_body(const std::string& message) { return nlohmann::json{{"error", message}}.dump(); }
+
+// Constant-time comparison of the presented and the expected token.
+bool same_token(const std::string& a, const std::string& b) {
+  if (a.size() != b.size() || b.empty()) return false;
+  unsigned diff = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) diff |= static_cast<unsigned>(a[i] ^ b[i]);
+  return diff == 0;
+}
+
+}  // namespace
+
+bool is_loopback(const std::string& address) {
+  if (address == "localhost" || address == "::1") return true;
+  websocketpp::lib::asio::error_code ec;
+  const auto parsed = websocketpp::lib::asio::ip::address::from_string(address, ec);
+  return !ec && parsed.is_loopback();
+}
+
+struct WebServer::Impl {
+  ServerOptions options;
+  ApiHandler api;
+  Greeting greeting;
+  Endpoint endpoint;
+  std::thread thread;
+  std::set<Handle, std::owner_less<Handle>> clients;  // I/O thread only
+  std::atomic<std::size_t> client_count{0};
+  int port = 0;
+  mutable std::mutex stats_mutex;
+  ServerStats stats;
+
+  // The token presented with a request (query `token`, or `Authorization: Bearer …`).
+  bool authorised(const std::map<std::string, std::string>& query, const std::string& authorization) const {
+    if (options.token.empty()) return true;
+    if (const auto it = query.find("token"); it != query.end() && same_token(it->second, options.token)) return true;
+    const std::string bearer = "Bearer ";
+    return authorization.rfind(bearer, 0) == 0 && same_token(authorization.substr(bearer.size()), options.token);
+  }
+
+  void count(int status) {
+    std::lock_guard lock(stats_mutex);
+    ++stats.requests;
+    if (status >= 400 && status < 500) ++stats.refused;
+  }
+
+  void on_http(Handle hdl) {
+    auto con = endpoint.get_con_from_hdl(hdl);
+    const auto& request = con->get_request();
+    auto [path, query] = split_target(request.get_uri());
+    HttpReply reply;
+    if (!authorised(query, request.get_header("Authorization"))) {
+      reply = {401, "application/json", error_body("missing or wrong access token (pass ?token=… or "
+                                                   "'Authorization: Bearer …'; see docs/web.md)")};
+    } else if (path.rfind("/api/", 0) == 0) {
+      HttpRequest r{request.get_method(), path, query, con->get_request_body()};
+      try {
+        reply = api(r);
+      } catch (const std::exception& e) {
+        reply = {500, "application/json", error_body(e.what())};
+      }
+    } else if (request.get_method() != "GET") {
+      reply = {405, "application/json", error_body(fmt::format("{} {}: only GET serves the page", request.get_method(), path))};
+    } else if (const auto asset = find_asset(path)) {
+      reply = {200, std::string(asset->content_type), std::string(asset->body)};
+    } else {
+      reply = {404, "application/json", error_body(fmt::format("no such page: {}", path))};
+    }
+    count(reply.status);
+    con->set_status(static_cast<websocketpp::http::status_code::value>(reply.status));
+    con->replace_header("Content-Type", reply.content_type);
+    con->replace_header("Cache-Control", "no-store");
+    con->set_body(std::move(reply.body));
+  }
+
+  bool on_validate(Handle hdl) {
+    auto con = endpoint.get_con_from_hdl(hdl);
+    auto [path, query] = split_target(con->get_request().get_uri());
+    if (path != "/ws") {
+      con->set_status(websocketpp::http::status_code::not_found);
+      con->set_body(error_body("the state stream is at /ws"));
+      count(404);
+      return false;
+    }
+    if (!authorised(query, con->get_request().get_header("Authorization"))) {
+      con->set_status(websocketpp::http::status_code::unauthorized);
+      con->set_body(error_body("missing or wrong access token"));
+      count(401);
+      return false;
+    }
+    return true;
+  }
+
+  void send(Handle hdl, const std::string& frame) {
+    websocketpp::lib::error_code ec;
+    endpoint.send(hdl, frame, websocketpp::frame::opcode::text, ec);
+  }
+
+  void fan_out(const std::shared_ptr<const std::string>& frame) {
+    std::uint64_t sent = 0;
+    std::uint64_t dropped = 0;
+    for (const auto& hdl : clients) {
+      websocketpp::lib::error_code ec;
+      auto con = endpoint.get_con_from_hdl(hdl, ec);
+      if (ec) continue;
+      if (con->get_buffered_amount() > options.max_client_queue_bytes) {
+        ++dropped;
+        continue;
+      }
+      con->send(*frame, websocketpp::frame::opcode::text);
+      ++sent;
+    }
+    std::lock_guard lock(stats_mutex);
+    stats.frames_sent += sent;
+    stats.frames_dropped += dropped;
+  }
+};
+
+WebServer::WebServer(const ServerOptions& options, ApiHandler api, Greeting greeting)
+    : impl_(std::make_unique<Impl>()) {
+  if (!is_loopback(options.address) && options.token.empty()) {
+    throw InputError(fmt::format("--web {}: serving beyond loopback needs an access token", options.address),
+                     "--web-token", "a token of 16 or more characters, or a loopback address (127.0.0.1)");
+  }
+  auto& s = *impl_;
+  s.options = options;
+  s.api = std::move(api);
+  s.greeting = std::move(greeting);
+  s.endpoint.clear_access_channels(websocketpp::log::alevel::all);
+  s.endpoint.clear_error_channels(websocketpp::log::elevel::all);
+  s.endpoint.init_asio();
+  s.endpoint.set_reuse_addr(true);
+  s.endpoint.set_max_http_body_size(options.max_body_bytes);
+  s.endpoint.set_http_handler([&s](Handle hdl) { s.on_http(hdl); });
+  s.endpoint.set_validate_handler([&s](Handle hdl) { return s.on_validate(hdl); });
+  s.endpoint.set_open_handler([&s](Handle hdl) {
+    s.clients.insert(hdl);
+    s.client_count = s.clients.size();
+    s.send(hdl, s.greeting());
+  });
+  s.endpoint.set_close_handler([&s](Handle hdl) {
+    s.clients.erase(hdl);
+    s.client_count = s.clients.size();
+  });
+  s.endpoint.set_fail_handler([&s](Handle hdl) { s.clients.erase(hdl); });
+  websocketpp::lib::asio::error_code ec;
+  const auto address = websocketpp::lib::asio::ip::address::from_string(
+      options.address == "localhost" ? "127.0.0.1" : options.address, ec);
+  if (ec) throw InputError(fmt::format("--web: '{}' is not an IP address", options.address), "--web", "[ADDR:]PORT, e.g. 127.0.0.1:8080");
+  websocketpp::lib::error_code listen_error;
+  s.endpoint.listen(websocketpp::lib::asio::ip::tcp::endpoint(address, static_cast<unsigned short>(options.port)),
+                    listen_error);
+  if (listen_error) {
+    throw InputError(fmt::format("--web: cannot listen on {}:{}: {}", options.address, options.port,
+                                 listen_error.message()),
+                     "--web", "a free port");
+  }
+  s.port = s.endpoint.get_local_endpoint(ec).port();
+  s.endpoint.start_accept();
+  s.thread = std::thread([&s] { s.endpoint.run(); });
+}
+
+WebServer::~WebServer() {
+  auto& s = *impl_;
+  websocketpp::lib::asio::post(s.endpoint.get_io_service(), [&s] {
+    websocketpp::lib::error_code ec;
+    s.endpoint.stop_listening(ec);
+    for (const auto& hdl : s.clients) s.endpoint.close(hdl, websocketpp::close::status::going_away, "session ended", ec);
+  });
+  // Give clients a moment to see the close frame, then stop the loop.
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  s.endpoint.stop();
+  if (s.thread.joinable()) s.thread.join();
+}
+
+void WebServer::broadcast(std::shared_ptr<const std::string> frame) {
+  auto& s = *impl_;
+  if (s.client_count == 0) return;
+  websocketpp::lib::asio::post(s.endpoint.get_io_service(), [&s, frame = std::move(frame)] { s.fan_out(frame); });
+}
+
+int WebServer::port() const { return impl_->port; }
+
+std::string WebServer::url() const {
+  const auto& o = impl_->options;
+  const auto host = o.address.find(':') != std::string::npos ? "[" + o.address + "]" : o.address;
+  return fmt::format("http://{}:{}/{}", host, impl_->port, o.token.empty() ? "" : "?token=" + o.token);
+}
+
+ServerStats WebServer::stats() const {
+  std::lock_guard lock(impl_->stats_mutex);
+  return impl_->stats;
+}
+
+std::size_t WebServer::clients() const { return impl_->client_count; }
+
+}  // namespace freeplay::web

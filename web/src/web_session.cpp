@@ -1,0 +1,258 @@
+#include "freeplay/web/web_session.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <opencv2/imgcodecs.hpp>
+#include <thread>
+
+#include "freeplay/sim/sandtray.hpp"
+#include "freeplay/web/experiment.hpp"
+#include "freeplay/web/state_frame.hpp"
+
+namespace freeplay::web {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr int kBackgroundJpegQuality = 85;
+
+double unix_ms() {
+  return std::chrono::duration<double, std::milli>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+HttpReply json_reply(int status, const nlohmann::json& body) { return {status, "application/json", body.dump()}; }
+HttpReply error_reply(int status, const std::string& message) { return json_reply(status, {{"error", message}}); }
+
+nlohmann::json events_json(const std::vector<Event>& events) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& e : events) out.push_back(e.to_json());
+  return out;
+}
+
+// What the server thread, the observer (sim thread) and the API share.
+class Session {
+ public:
+  Session(const runner::Scenario& scenario, std::uint64_t seed, const WebSessionOptions& options)
+      : scenario_(scenario), log_(options.out / "events.jsonl"),
+        experiment_(options.out / "experiment.yaml", scenario.condition,
+                    std::chrono::duration_cast<std::chrono::seconds>(std::chrono::system_clock::now().time_since_epoch()).count(),
+                    log_),
+        scene_(scene_json(*runner::SharedModels::shipped().catalogue, scenario).dump()) {
+    for (const auto& item : runner::SharedModels::shipped().catalogue->items()) item_names_.push_back(item.name);
+    if (scenario.condition == "child-robot") {
+      robot_ = std::make_unique<WizardRobot>(scenario, seed, log_, options.mode, options.sparc_timeout_s);
+    }
+  }
+
+  WizardRobot* robot() { return robot_.get(); }
+  SessionLog& log() { return log_; }
+  ExperimentManager& experiment() { return experiment_; }
+  bool finalised() const { return finalised_; }
+
+  // The full state a new client starts from.
+  std::string greeting() const {
+    std::lock_guard lock(mutex_);
+    return latest_full_.empty() ? R"({"type":"state","stage":"starting","items":[],"events":[]})" : latest_full_;
+  }
+
+  void publish(nlohmann::json frame, const std::string& stage, double t, double freeplay_t) {
+    auto full = frame;
+    full["events"] = nlohmann::json::array();
+    std::lock_guard lock(mutex_);
+    if (!frame.contains("zones")) full["zones"] = zones_;
+    latest_full_ = full.dump();
+    stage_ = stage;
+    t_ = t;
+    freeplay_t_ = freeplay_t;
+  }
+
+  void set_background(const sim::Sandtray& tray, nlohmann::json zones) {
+    std::vector<uchar> jpeg;
+    cv::imencode(".jpg", tray.background(), jpeg, {cv::IMWRITE_JPEG_QUALITY, kBackgroundJpegQuality});
+    std::lock_guard lock(mutex_);
+    background_ = std::string(jpeg.begin(), jpeg.end());
+    zones_ = std::move(zones);
+  }
+
+  HttpReply api(const HttpRequest& r) {
+    if (r.path == "/api/command") {
+      if (r.method != "POST") return error_reply(405, "/api/command takes POST with a JSON body (docs/web.md)");
+      try {
+        return command(parse_command(r.body, item_names_));
+      } catch (const CommandError& e) {
+        return error_reply(e.status(), e.what());
+      }
+    }
+    if (r.method != "GET") return error_reply(405, fmt::format("{} takes GET", r.path));
+    if (r.path == "/api/scene") return {200, "application/json", scene_};
+    if (r.path == "/api/state") return {200, "application/json", greeting()};
+    if (r.path == "/api/events") return json_reply(200, events_json(log_.all()));
+    if (r.path == "/api/background.jpg") {
+      std::lock_guard lock(mutex_);
+      if (background_.empty()) return error_reply(404, "no background published yet");
+      return {200, "image/jpeg", background_};
+    }
+    return error_reply(404, fmt::format("no such endpoint: {} (allowed: /api/scene, /api/state, /api/events, "
+                                        "/api/background.jpg, /api/command)", r.path));
+  }
+
+ private:
+  HttpReply command(const Command& c) {
+    std::string stage;
+    double t = 0.0;
+    double freeplay_t = 0.0;
+    {
+      std::lock_guard lock(mutex_);
+      stage = stage_;
+      t = t_;
+      freeplay_t = freeplay_t_;
+    }
+    switch (c.target) {
+      case CommandTarget::Experiment:
+        experiment_.apply(c, freeplay_t, t);
+        if (c.type == "finalise") finalised_ = true;
+        return json_reply(200, {{"ok", true}, {"type", c.type}, {"experiment", experiment_.state()}});
+      case CommandTarget::Protocol: {
+        const auto topic = "sandtray/signals/" + c.args["name"].get<std::string>();
+        log_.add({t, "experimenter", "signal", {{"name", c.args["name"]}, {"topic", topic}}});
+        return json_reply(202, {{"ok", true}, {"type", c.type}, {"topic", topic}});
+      }
+      case CommandTarget::Robot: break;
+    }
+    if (!robot_) return error_reply(409, fmt::format("'{}': a child-child session has no robot", c.type));
+    const bool setting = c.type == "mode" || c.type == "sparc_timeout";
+    if (!setting && stage != "freeplay") {
+      return error_reply(409, fmt::format("'{}': the robot acts in free play only (the stage is '{}'; the game hides "
+                                          "the sandbox and ignores /poses outside it)", c.type, stage));
+    }
+    robot_->push(c);
+    return json_reply(202, {{"ok", true}, {"type", c.type}});
+  }
+
+  const runner::Scenario& scenario_;
+  SessionLog log_;
+  ExperimentManager experiment_;
+  std::string scene_;
+  std::vector<std::string> item_names_;
+  std::unique_ptr<WizardRobot> robot_;
+  std::atomic<bool> finalised_{false};
+  mutable std::mutex mutex_;
+  std::string latest_full_;
+  std::string background_;
+  nlohmann::json zones_ = nlohmann::json::array();
+  std::string stage_ = "starting";
+  double t_ = 0.0;
+  double freeplay_t_ = -1e9;
+};
+
+/// Paces the episode to the wall clock and turns every tick into a state frame for the page.
+class WebObserver final : public runner::EpisodeObserver {
+ public:
+  WebObserver(Session& session, WebServer& server, double rate, std::size_t& ticks)
+      : session_(session), server_(server), rate_(rate), ticks_(ticks) {}
+
+  void observe(const runner::EpisodeSnapshot& s) override {
+    pace(s.t);
+    const double tick_ms = unix_ms();
+    for (const auto& e : s.new_events) session_.log().add(e);
+    if (auto* robot = session_.robot()) {
+      std::map<std::string, Eigen::Vector3d> faces;
+      for (const auto& c : s.children) faces[c.seat] = c.head;
+      robot->observe(s.new_events, faces);
+    }
+    if (s.stage == "freeplay" && !freeplay_seen_) {
+      freeplay_seen_ = true;
+      session_.experiment().freeplay_started(static_cast<std::uint64_t>(tick_ms * 1e6));
+    }
+    auto frame = tick_json(s);
+    if (s.tray->background_version() != background_version_) {
+      background_version_ = s.tray->background_version();
+      auto zones = zones_json(*s.tray);
+      frame["zones"] = zones;
+      session_.set_background(*s.tray, std::move(zones));
+    }
+    send(std::move(frame), std::string(s.stage), s.t, s.freeplay_t, tick_ms);
+  }
+
+  // A frame without a tick (after the episode): the experiment and the events still reach the page.
+  void idle_frame(double t) {
+    send({{"type", "state"}, {"stage", "ended"}, {"t", t}}, "ended", t, -1.0, unix_ms());
+  }
+
+ private:
+  void send(nlohmann::json frame, const std::string& stage, double t, double freeplay_t, double tick_ms) {
+    frame["seq"] = ++seq_;
+    frame["tick_unix_ms"] = tick_ms;
+    frame["robot_control"] = session_.robot() != nullptr ? session_.robot()->state() : nlohmann::json();
+    frame["experiment"] = session_.experiment().state();
+    nlohmann::json events = nlohmann::json::array();
+    for (const auto& e : session_.log().take_new()) events.push_back(e.to_json());
+    frame["events"] = std::move(events);
+    auto text = std::make_shared<const std::string>(frame.dump());
+    session_.publish(std::move(frame), stage, t, freeplay_t);
+    server_.broadcast(std::move(text));
+    ++ticks_;
+  }
+
+  void pace(double t) {
+    if (!start_) {
+      start_ = Clock::now();
+      t0_ = t;
+    }
+    std::this_thread::sleep_until(*start_ + std::chrono::duration_cast<Clock::duration>(
+                                                std::chrono::duration<double>((t - t0_) / rate_)));
+  }
+
+  Session& session_;
+  WebServer& server_;
+  double rate_;
+  std::size_t& ticks_;
+  std::optional<Clock::time_point> start_;
+  double t0_ = 0.0;
+  std::uint64_t background_version_ = ~std::uint64_t{0};
+  bool freeplay_seen_ = false;
+  std::uint64_t seq_ = 0;
+};
+
+/// The episode owns its observers; the session's observer outlives it (for the frames after the episode).
+class ObserverRef final : public runner::EpisodeObserver {
+ public:
+  explicit ObserverRef(WebObserver& observer) : observer_(observer) {}
+  void observe(const runner::EpisodeSnapshot& snapshot) override { observer_.observe(snapshot); }
+
+ private:
+  WebObserver& observer_;
+};
+
+}  // namespace
+
+WebSessionReport serve_web(const runner::Scenario& scenario, std::uint64_t seed, const WebSessionOptions& options,
+                           const std::atomic<bool>& stop) {
+  std::filesystem::create_directories(options.out);
+  Session session(scenario, seed, options);
+  WebServer server(options.server, [&session](const HttpRequest& r) { return session.api(r); },
+                   [&session] { return session.greeting(); });
+  if (options.on_listening) options.on_listening(server.url());
+  WebSessionReport report;
+  WebObserver observer(session, server, options.rate, report.ticks);
+  runner::EpisodeObservers observers;
+  observers.push_back(std::make_unique<ObserverRef>(observer));
+  const runner::EpisodeInfo info{&scenario, "web", seed};
+  report.result = runner::run_episode(scenario, seed, runner::SharedModels::shipped(), stop, observers, info, nullptr,
+                                      session.robot());
+  if (!report.result.aborted) {
+    std::ofstream(options.out / "episode.json") << report.result.record.dump(2) << '\n';
+    while (options.linger && !session.finalised() && !stop.load()) {
+      observer.idle_frame(report.result.simulated_s);
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    }
+    observer.idle_frame(report.result.simulated_s);
+  }
+  report.server = server.stats();
+  return report;
+}
+
+}  // namespace freeplay::web
