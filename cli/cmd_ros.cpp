@@ -56,6 +56,9 @@ struct ServeCommandOptions {
 
 void serve_command(const ServeCommandOptions& o) {
   if (!o.web.listen.empty()) {  // the web page needs no ROS master
+    if (o.robot == "external") {
+      throw InputError("--web drives the robot from the page: it cannot take --robot external", "--robot", "sim");
+    }
     std::signal(SIGINT, on_ros_interrupt);
     std::signal(SIGTERM, on_ros_interrupt);
     run_web_serve(o.file, o.overrides, o.seed, o.rate, o.web, g_ros_stop);
