@@ -75,6 +75,8 @@ TEST(WebServer, ATokenIsRequiredOfEveryRequestOnceSet) {
   EXPECT_EQ(http(server.port(), get("/api/state?token=0123456789abcdef-secre")).first, 401);
   EXPECT_EQ(http(server.port(), get("/?token=0123456789abcdef-secret")).first, 200);
   EXPECT_EQ(http(server.port(), get("/api/state", "Authorization: Bearer 0123456789abcdef-secret\r\n")).first, 200);
+  EXPECT_EQ(http(server.port(), get("/app.js", "Cookie: a=b; freeplay_token=0123456789abcdef-secret\r\n")).first, 200);
+  EXPECT_EQ(http(server.port(), get("/app.js", "Cookie: freeplay_token=0123456789abcdef-secreT\r\n")).first, 401);
   EXPECT_EQ(http(server.port(), post("/api/command", "{}")).first, 401);
   EXPECT_EQ(server.url(), "http://127.0.0.1:" + std::to_string(server.port()) + "/?token=0123456789abcdef-secret");
   EXPECT_GE(server.stats().refused, 4u);

@@ -14,6 +14,7 @@
   const timelines = {};
   window.__latencies = [];
   window.__frames = 0;
+  window.__events = events;
 
   const W = () => scene ? scene.screen.width_m : 0.6;
   const H = () => scene ? scene.screen.height_m : 0.335;
@@ -108,6 +109,11 @@
       if (state.robot.finger) dot(state.robot.finger[0], state.robot.finger[1], 7, '#3fa9f5', '#fff');
       const g = state.robot.gaze_point;
       if (g && g[2] < 0.05) cross(g[0], g[1], '#3fa9f5');
+    }
+    if (rc && rc.reach) {  // the arm_reach disc: where the robot can move items
+      const [cx, cy] = toPx(rc.reach.centre[0], rc.reach.centre[1]);
+      ctx.beginPath(); ctx.arc(cx, cy, rc.reach.radius / W() * canvas.width, 0, 2 * Math.PI);
+      ctx.strokeStyle = 'rgba(63,169,245,0.6)'; ctx.lineWidth = 1; ctx.setLineDash([2, 6]); ctx.stroke(); ctx.setLineDash([]);
     }
     if (rc && rc.move) { const [x, y] = rc.move.target; cross(x, y, '#f0c040'); }
     if (drag) {

@@ -20,6 +20,8 @@ namespace {
 using Endpoint = websocketpp::server<websocketpp::config::asio>;
 using Handle = websocketpp::connection_hdl;
 
+constexpr const char* kTokenCookie = "freeplay_token";
+
 std::string decode(std::string_view s) {
   std::string out;
   for (std::size_t i = 0; i < s.size(); ++i) {
@@ -86,12 +88,22 @@ struct WebServer::Impl {
   mutable std::mutex stats_mutex;
   ServerStats stats;
 
-  // The token presented with a request (query `token`, or `Authorization: Bearer …`).
-  bool authorised(const std::map<std::string, std::string>& query, const std::string& authorization) const {
+  // The token presented with a request: query `token`, `Authorization: Bearer …`, or the cookie the page got.
+  template <typename Request>
+  bool authorised(const std::map<std::string, std::string>& query, const Request& request) const {
     if (options.token.empty()) return true;
     if (const auto it = query.find("token"); it != query.end() && same_token(it->second, options.token)) return true;
     const std::string bearer = "Bearer ";
-    return authorization.rfind(bearer, 0) == 0 && same_token(authorization.substr(bearer.size()), options.token);
+    const auto authorization = request.get_header("Authorization");
+    if (authorization.rfind(bearer, 0) == 0 && same_token(authorization.substr(bearer.size()), options.token)) return true;
+    const auto cookies = request.get_header("Cookie");
+    const std::string name = std::string(kTokenCookie) + "=";
+    for (auto at = cookies.find(name); at != std::string::npos; at = cookies.find(name, at + 1)) {
+      if (at != 0 && cookies[at - 1] != ' ' && cookies[at - 1] != ';') continue;
+      const auto start = at + name.size();
+      if (same_token(cookies.substr(start, cookies.find(';', start) - start), options.token)) return true;
+    }
+    return false;
   }
 
   void count(int status) {
@@ -105,7 +117,7 @@ struct WebServer::Impl {
     const auto& request = con->get_request();
     auto [path, query] = split_target(request.get_uri());
     HttpReply reply;
-    if (!authorised(query, request.get_header("Authorization"))) {
+    if (!authorised(query, request)) {
       reply = {401, "application/json", error_body("missing or wrong access token (pass ?token=… or "
                                                    "'Authorization: Bearer …'; see docs/web.md)")};
     } else if (path.rfind("/api/", 0) == 0) {
@@ -126,6 +138,10 @@ struct WebServer::Impl {
     con->set_status(static_cast<websocketpp::http::status_code::value>(reply.status));
     con->replace_header("Content-Type", reply.content_type);
     con->replace_header("Cache-Control", "no-store");
+    if (!options.token.empty() && query.count("token") != 0 && reply.status < 400) {
+      // The page's own requests (scripts, styles, the WebSocket) then carry the token without repeating it.
+      con->replace_header("Set-Cookie", fmt::format("{}={}; Path=/; HttpOnly; SameSite=Strict", kTokenCookie, options.token));
+    }
     con->set_body(std::move(reply.body));
   }
 
@@ -138,7 +154,7 @@ struct WebServer::Impl {
       count(404);
       return false;
     }
-    if (!authorised(query, con->get_request().get_header("Authorization"))) {
+    if (!authorised(query, con->get_request())) {
       con->set_status(websocketpp::http::status_code::unauthorized);
       con->set_body(error_body("missing or wrong access token"));
       count(401);

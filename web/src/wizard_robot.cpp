@@ -279,7 +279,12 @@ nlohmann::json WizardRobot::state() const {
                      {"sparc_timeout_s", sparc_timeout_s_},
                      {"last_said", last_said_},
                      {"move", nullptr},
-                     {"proposal", nullptr}};
+                     {"proposal", nullptr},
+                     {"reach", nullptr}};
+  if (observation_.self.arm_reach_known) {
+    const auto& c = observation_.self.arm_reach_centre;
+    out["reach"] = {{"centre", {c.x(), c.y()}}, {"radius", observation_.self.arm_reach_radius}};
+  }
   if (executor_ && executor_->status() == planning::MoveStatus::Running) {
     out["move"] = {{"item", move_item_}, {"by", move_source_}, {"target", {move_target_.x(), move_target_.y()}}};
   }
