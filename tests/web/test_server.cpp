@@ -43,6 +43,26 @@ std::string post(const std::string& target, const std::string& body) {
          "Content-Length: " + std::to_string(body.size()) + "\r\n\r\n" + body;
 }
 
+// A WebSocket client that completes the handshake on /ws and then never reads (a stalled page).
+int stalled_client(int port) {
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  const int small = 4096;
+  setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &small, sizeof small);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_port = htons(static_cast<std::uint16_t>(port));
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) return -1;
+  const std::string handshake =
+      "GET /ws HTTP/1.1\r\nHost: x\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n"
+      "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n\r\n";
+  (void)!write(fd, handshake.data(), handshake.size());
+  std::string response;
+  char c = 0;
+  while (response.find("\r\n\r\n") == std::string::npos && read(fd, &c, 1) == 1) response += c;
+  return response.find(" 101 ") != std::string::npos ? fd : -1;
+}
+
 WebServer::ApiHandler echo() {
   return [](const HttpRequest& r) { return HttpReply{200, "application/json", r.method + " " + r.path + " " + r.body}; };
 }
@@ -101,4 +121,30 @@ TEST(WebServer, OversizedBodiesAreRefused) {
   const auto status = http(server.port(), post("/api/command", std::string(4096, 'x'))).first;
   EXPECT_GE(status, 400);
   EXPECT_LT(status, 500);
+}
+
+TEST(WebServer, AStalledClientSkipsFramesInsteadOfGrowingTheQueue) {
+  ServerOptions options;
+  options.port = 0;
+  options.max_client_queue_bytes = 64 * 1024;
+  WebServer server(options, echo(), [] { return std::string("{}"); });
+  const int fd = stalled_client(server.port());
+  ASSERT_GE(fd, 0);
+  for (int i = 0; i < 200 && server.clients() == 0; ++i) usleep(10000);
+  ASSERT_EQ(server.clients(), 1u);
+  const auto frame = std::make_shared<const std::string>(std::string(100 * 1024, 'x'));
+  constexpr int kFrames = 300;  // 30 MB offered: far more than the socket buffers and the cap hold
+  for (int i = 0; i < kFrames; ++i) {
+    server.broadcast(frame);
+    usleep(1000);
+  }
+  ServerStats stats;
+  for (int i = 0; i < 200; ++i) {  // the I/O thread hands out the posted frames
+    stats = server.stats();
+    if (stats.frames_sent + stats.frames_dropped == kFrames) break;
+    usleep(10000);
+  }
+  EXPECT_EQ(stats.frames_sent + stats.frames_dropped, static_cast<std::uint64_t>(kFrames));
+  EXPECT_GT(stats.frames_dropped, kFrames / 2u);
+  close(fd);
 }
