@@ -61,7 +61,9 @@ void serve_command(const ServeCommandOptions& o) {
     }
     std::signal(SIGINT, on_ros_interrupt);
     std::signal(SIGTERM, on_ros_interrupt);
-    run_web_serve(o.file, o.overrides, o.seed, o.rate, o.web, g_ros_stop);
+    auto web = o.web;
+    web.master_timeout_s = o.master_timeout_s;
+    run_web_serve(o.file, o.overrides, o.seed, o.rate, web, g_ros_stop);
     return;
   }
 #ifdef FREEPLAY_WITH_ROS

@@ -15,6 +15,12 @@
 #ifdef FREEPLAY_WITH_WEB
 #include "freeplay/web/web_session.hpp"
 #endif
+#if defined(FREEPLAY_WITH_WEB) && defined(FREEPLAY_WITH_ROS)
+#include <mutex>
+
+#include "freeplay/ros/graph.hpp"
+#include "freeplay/ros/sparc_listener.hpp"
+#endif
 
 namespace freeplay::cli {
 
@@ -29,6 +35,8 @@ void add_web_options(CLI::App& serve, WebCliOptions& o) {
                                                          "simulated seconds unless vetoed")
       ->check(CLI::Range(0.1, 60.0));
   serve.add_flag("--web-no-linger", o.no_linger, "Exit when the episode ends instead of waiting for 'finalise'");
+  serve.add_flag("--web-ros", o.ros, "Also take the real WoZ GUI's sparc/selected_action from the ROS master "
+                                     "(ROS_MASTER_URI; --master-timeout)");
 }
 
 void run_web_serve(const std::string& file, const std::vector<std::string>& overrides, std::optional<std::uint64_t> seed,
@@ -64,6 +72,36 @@ void run_web_serve(const std::string& file, const std::vector<std::string>& over
   options.on_listening = [](const std::string& url) {
     std::cout << "web: " << url << std::endl;  // the first line of output: scripts and tests read the URL here
   };
+#ifdef FREEPLAY_WITH_ROS
+  // `sparc/selected_action` (the real WoZ GUI) becomes a move in the item's frame, checked as a page's command.
+  std::mutex sink_mutex;
+  web::CommandSink sink;
+  std::unique_ptr<ros_live::SparcListener> sparc;
+  if (o.ros) {
+    if (std::getenv("ROS_IP") == nullptr && std::getenv("ROS_HOSTNAME") == nullptr) setenv("ROS_IP", "127.0.0.1", 1);
+    std::string error;
+    if (!ros_graph::start_ros("sandtray_web", o.master_timeout_s, error)) {
+      std::cerr << "error: " << error << "\n";
+      fail_with(1);
+    }
+    options.on_commands = [&](web::CommandSink s) {
+      std::lock_guard lock(sink_mutex);
+      sink = std::move(s);
+    };
+    sparc = std::make_unique<ros_live::SparcListener>([&](const std::string& item, double x, double y) {
+      std::lock_guard lock(sink_mutex);
+      if (!sink) return;
+      const auto reply = sink(nlohmann::json{{"type", "move"}, {"item", item}, {"x", x}, {"y", y}, {"frame", "item"},
+                                             {"via", "sparc/selected_action"}}
+                                  .dump());
+      if (reply.status >= 400) spdlog::warn("sparc/selected_action for '{}' refused: {}", item, reply.body);
+    });
+  }
+#else
+  if (o.ros) {
+    throw InputError("this freeplay was built without ROS 1", "--web-ros", "install it with scripts/setup.sh and rebuild");
+  }
+#endif
   const auto episode_seed = runner::episode_seed(seed.value_or(scenario.seed), 0);
   spdlog::info("serving '{}' (seed {}, rate {}×) on the web; session folder {}", scenario.name, episode_seed, rate,
                options.out.string());

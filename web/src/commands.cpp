@@ -132,9 +132,15 @@ Command parse_command(const std::string& body, const std::vector<std::string>& i
   auto& a = c.args = nlohmann::json::object();
   if (c.type == "move") {
     a["item"] = f.one_of("item", item_names);
-    const auto p = screen_point(f);
-    a["x"] = p.x();
-    a["y"] = p.y();
+    a["frame"] = f.has("frame") ? f.one_of("frame", {"sandtray", "item"}) : "sandtray";
+    if (a["frame"] == "sandtray") {
+      const auto p = screen_point(f);
+      a["x"] = p.x();
+      a["y"] = p.y();
+    } else {  // relative to the item (sparc/selected_action): checked on the screen once converted
+      a["x"] = f.number("x", -sim::kScreenWidthM, sim::kScreenWidthM);
+      a["y"] = f.number("y", -sim::kScreenHeightM, sim::kScreenHeightM);
+    }
   } else if (c.type == "say") {
     a["text"] = f.text("text");
     a["to"] = f.has("to") ? f.one_of("to", {"", "purple", "yellow"}) : "";
@@ -180,6 +186,7 @@ Command parse_command(const std::string& body, const std::vector<std::string>& i
   } else if (c.type == "likert") {
     a["social_engagement"] = f.integer("social_engagement", 1, 5);
   }
+  if (f.has("via")) a["via"] = f.text("via");  // where a command came from, when not from a page
   f.no_other_keys();
   static const std::set<std::string> kProtocol = {"signal"};
   static const std::set<std::string> kExperiment = {"condition", "demographics", "marker", "note", "likert", "finalise"};

@@ -236,6 +236,15 @@ WebSessionReport serve_web(const runner::Scenario& scenario, std::uint64_t seed,
   WebServer server(options.server, [&session](const HttpRequest& r) { return session.api(r); },
                    [&session] { return session.greeting(); });
   if (options.on_listening) options.on_listening(server.url());
+  if (options.on_commands) {
+    options.on_commands([&session](const std::string& body) { return session.api({"POST", "/api/command", {}, body}); });
+  }
+  struct Detach {  // the other sources lose the session before it goes, however serve_web leaves
+    const WebSessionOptions& options;
+    ~Detach() {
+      if (options.on_commands) options.on_commands({});
+    }
+  } detach{options};
   WebSessionReport report;
   WebObserver observer(session, server, options.rate, report.ticks);
   runner::EpisodeObservers observers;

@@ -1,11 +1,13 @@
 #include "freeplay/web/wizard_robot.hpp"
 
+#include <Eigen/Geometry>
 #include <chrono>
 #include <variant>
 
 #include "freeplay/runner/sandtray_world.hpp"
 #include "freeplay/sim/item_catalogue.hpp"
 #include "freeplay/sim/sandtray.hpp"
+#include "freeplay/sim/screen.hpp"
 #include "freeplay/sim/zones.hpp"
 
 namespace freeplay::web {
@@ -137,7 +139,18 @@ void WizardRobot::apply(const Command& command, double t, const sim::Sandtray& t
   if (proposal_) decide_proposal("replaced", t, tray, step);
   policies::Action action;
   if (command.type == "move") {
-    action = policies::MoveItem{a["item"].get<std::string>(), Vec2(a["x"].get<double>(), a["y"].get<double>())};
+    const auto item = a["item"].get<std::string>();
+    Vec2 target(a["x"].get<double>(), a["y"].get<double>());
+    if (a["frame"] == "item") {  // as woz_play: the drop point in the item's frame, brought to `sandtray` by its pose
+      const auto pose = tray.item(item).pose;
+      target = pose.position() + Eigen::Rotation2Dd(pose.theta) * target;
+      if (!sim::on_screen(target)) {
+        log(tray, "wizard", "move_refused", {{"item", item}, {"target", {target.x(), target.y()}},
+                                             {"reason", "the drop point is off the screen"}});
+        return;
+      }
+    }
+    action = policies::MoveItem{item, target};
   } else if (command.type == "say") {
     action = policies::Say{a["text"].get<std::string>(), a["to"].get<std::string>()};
   } else if (command.type == "look_at") {

@@ -14,6 +14,9 @@
 
 namespace freeplay::web {
 
+/// Submits a command body as `POST /api/command` does (any thread) and answers as the API would.
+using CommandSink = std::function<HttpReply(const std::string& body)>;
+
 /// Settings of a web session.
 struct WebSessionOptions {
   ServerOptions server;                        ///< where to listen, token, queue caps
@@ -23,6 +26,8 @@ struct WebSessionOptions {
   double sparc_timeout_s = 2.0;                ///< SPARC: a proposal executes after this many seconds unless vetoed
   bool linger = true;                          ///< after the episode, serve until `finalise` or the stop flag
   std::function<void(const std::string& url)> on_listening;  ///< told the page's URL once the server listens
+  std::function<void(CommandSink)> on_commands;  ///< given the session's command entry (other sources: ROS), then
+                                                 ///< an empty one when the session ends
 };
 
 /// What a web session produced besides the episode.
