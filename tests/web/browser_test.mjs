@@ -4,6 +4,7 @@
 // see the same session, bad requests and wrong tokens get 4xx, and the tray matches the expected picture.
 // Usage: node browser_test.mjs FREEPLAY SCENARIO OUTDIR EXPECTED_DIR (run by run_browser_test.sh).
 import puppeteer from 'puppeteer-core';
+import WebSocket from 'ws';
 import { spawn } from 'node:child_process';
 import fs from 'node:fs';
 import path from 'node:path';
@@ -26,6 +27,47 @@ async function until(what, f, timeoutMs = 30000) {
     if (Date.now() > end) throw new Error(`timed out waiting for ${what}`);
     await sleep(100);
   }
+}
+// A minimal Foxglove client: subscribes to /tf and the background and decodes the first /tf message (ROS 1 encoding).
+function foxglove(url) {
+  return new Promise((resolve, reject) => {
+    const ws = new WebSocket(url, ['foxglove.websocket.v1']);
+    const result = { protocol: '', serverInfo: false, topics: [], tfSchema: '', tf: [], jpeg: false };
+    const channels = {};
+    const timer = setTimeout(() => { ws.close(); reject(new Error('no Foxglove messages')); }, 15000);
+    ws.on('open', () => { result.protocol = ws.protocol; });
+    ws.on('message', (data, binary) => {
+      if (!binary) {
+        const m = JSON.parse(data.toString());
+        if (m.op === 'serverInfo') result.serverInfo = true;
+        if (m.op === 'advertise') {
+          for (const c of m.channels) { channels[c.id] = c; result.topics.push(c.topic); }
+          result.tfSchema = m.channels.find((c) => c.topic === '/tf').schema;
+          ws.send(JSON.stringify({ op: 'subscribe', subscriptions: m.channels.map((c) => ({ id: 100 + c.id, channelId: c.id })) }));
+        }
+        return;
+      }
+      const b = Buffer.from(data);
+      if (b[0] !== 1) return;
+      const topic = channels[b.readUInt32LE(1) - 100].topic;
+      let o = 13;
+      const str = () => { const n = b.readUInt32LE(o); o += 4; const v = b.toString('utf8', o, o + n); o += n; return v; };
+      if (topic === '/tf' && result.tf.length === 0) {
+        const count = b.readUInt32LE(o); o += 4;
+        for (let i = 0; i < count; ++i) {
+          o += 12; const parent = str(); const child = str();
+          const x = b.readDoubleLE(o), y = b.readDoubleLE(o + 8); o += 7 * 8;
+          result.tf.push({ parent, child, x, y });
+        }
+      }
+      if (topic === '/sandtray/background/image/compressed') {
+        o += 12; str(); const format = str(); const n = b.readUInt32LE(o);
+        result.jpeg = format === 'jpeg' && b[o + 4] === 0xff && b[o + 5] === 0xd8 && n > 1000;
+      }
+      if (result.tf.length && result.jpeg) { clearTimeout(timer); ws.close(); resolve(result); }
+    });
+    ws.on('error', reject);
+  });
 }
 const readText = (file) => (fs.existsSync(file) ? fs.readFileSync(file, 'utf8') : '');
 
@@ -200,6 +242,16 @@ try {
     ws.onopen = () => res(false); ws.onerror = () => res(true);
   }), new URL(base).host);
   check(wsRefused, 'a WebSocket without the token is refused');
+
+  // ---- Foxglove WebSocket protocol: advertise, subscribe, ROS 1 binary messages --------------------------------
+  const fox = await foxglove(`${base.replace('http', 'ws')}/?token=${token}`);
+  check(fox.protocol === 'foxglove.websocket.v1' && fox.serverInfo, 'a Foxglove client gets serverInfo on foxglove.websocket.v1');
+  check(['/tf', '/zones', '/footprints', '/sandtray/background/image/compressed'].every((t) => fox.topics.includes(t)) &&
+        fox.tfSchema.includes('MSG: geometry_msgs/TransformStamped'), 'the channels are advertised with ros1msg schemas', fox.topics.join(', '));
+  const serverItems = (await (await fetch(api('/api/state'))).json()).items;
+  const near = fox.tf.filter((t) => { const i = serverItems.find((k) => k.name === t.child); return i && Math.hypot(i.x - t.x, i.y - t.y) < 0.05; });
+  check(fox.tf.length >= 10 && near.length >= 8, '/tf messages decode to the items in the sandtray frame', `${near.length} of ${fox.tf.length} near`);
+  check(fox.jpeg, 'the background arrives as a JPEG sensor_msgs/CompressedImage');
 
   // ---- console, latency, screenshot ------------------------------------------------------------------------------
   check(page.errors.length === 0, 'the page logs no console errors', page.errors.join(' | '));

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -21,6 +22,12 @@ using Endpoint = websocketpp::server<websocketpp::config::asio>;
 using Handle = websocketpp::connection_hdl;
 
 constexpr const char* kTokenCookie = "freeplay_token";
+constexpr const char* kFoxgloveProtocol = "foxglove.websocket.v1";
+
+// A Foxglove client: its subscriptions (subscription id → channel id).
+struct FoxgloveClient {
+  std::map<std::uint32_t, int> subscriptions;
+};
 
 std::string decode(std::string_view s) {
   std::string out;
@@ -84,6 +91,9 @@ struct WebServer::Impl {
   std::thread thread;
   std::set<Handle, std::owner_less<Handle>> clients;  // I/O thread only
   std::atomic<std::size_t> client_count{0};
+  std::map<Handle, FoxgloveClient, std::owner_less<Handle>> foxglove;  // I/O thread only
+  std::map<int, FoxgloveMessage> latched;                              // I/O thread only
+  std::atomic<std::size_t> foxglove_count{0};
   int port = 0;
   mutable std::mutex stats_mutex;
   ServerStats stats;
@@ -148,7 +158,10 @@ struct WebServer::Impl {
   bool on_validate(Handle hdl) {
     auto con = endpoint.get_con_from_hdl(hdl);
     auto [path, query] = split_target(con->get_request().get_uri());
-    if (path != "/ws") {
+    const auto& protocols = con->get_requested_subprotocols();
+    const bool foxglove_client = std::find(protocols.begin(), protocols.end(), kFoxgloveProtocol) != protocols.end();
+    if (foxglove_client) con->select_subprotocol(kFoxgloveProtocol);
+    if (path != "/ws" && !foxglove_client) {
       con->set_status(websocketpp::http::status_code::not_found);
       con->set_body(error_body("the state stream is at /ws"));
       count(404);
@@ -163,9 +176,85 @@ struct WebServer::Impl {
     return true;
   }
 
-  void send(Handle hdl, const std::string& frame) {
+  void send(Handle hdl, const std::string& frame, websocketpp::frame::opcode::value opcode = websocketpp::frame::opcode::text) {
     websocketpp::lib::error_code ec;
-    endpoint.send(hdl, frame, websocketpp::frame::opcode::text, ec);
+    endpoint.send(hdl, frame, opcode, ec);
+  }
+
+  void on_open(Handle hdl) {
+    auto con = endpoint.get_con_from_hdl(hdl);
+    if (con->get_subprotocol() != kFoxgloveProtocol) {
+      clients.insert(hdl);
+      client_count = clients.size();
+      send(hdl, greeting());
+      return;
+    }
+    foxglove[hdl] = {};
+    foxglove_count = foxglove.size();
+    send(hdl, nlohmann::json{{"op", "serverInfo"}, {"name", "freeplay serve --web"}, {"capabilities", nlohmann::json::array()},
+                             {"supportedEncodings", nlohmann::json::array()}, {"metadata", nlohmann::json::object()}}
+                  .dump());
+    nlohmann::json channels = nlohmann::json::array();
+    for (const auto& c : foxglove_channels()) {
+      channels.push_back({{"id", c.id}, {"topic", c.topic}, {"encoding", "ros1"}, {"schemaName", c.schema_name},
+                          {"schema", c.schema}, {"schemaEncoding", "ros1msg"}});
+    }
+    send(hdl, nlohmann::json{{"op", "advertise"}, {"channels", channels}}.dump());
+  }
+
+  void on_close(Handle hdl) {
+    clients.erase(hdl);
+    client_count = clients.size();
+    foxglove.erase(hdl);
+    foxglove_count = foxglove.size();
+  }
+
+  // Foxglove client operations: subscribe / unsubscribe (anything else is ignored, as the protocol allows).
+  void on_message(Handle hdl, const Endpoint::message_ptr& message) {
+    const auto it = foxglove.find(hdl);
+    if (it == foxglove.end()) return;  // pages only listen
+    const auto request = nlohmann::json::parse(message->get_payload(), nullptr, false);
+    if (!request.is_object()) return;
+    const auto op = request.value("op", "");
+    if (op == "subscribe" && request.contains("subscriptions") && request["subscriptions"].is_array()) {
+      for (const auto& sub : request["subscriptions"]) {
+        if (!sub.is_object() || !sub.contains("id") || !sub.contains("channelId")) continue;
+        const auto id = sub["id"].get<std::uint32_t>();
+        const auto channel = sub["channelId"].get<int>();
+        it->second.subscriptions[id] = channel;
+        if (const auto l = latched.find(channel); l != latched.end()) {
+          send(hdl, foxglove_frame(id, l->second), websocketpp::frame::opcode::binary);
+        }
+      }
+    } else if (op == "unsubscribe" && request.contains("subscriptionIds") && request["subscriptionIds"].is_array()) {
+      for (const auto& id : request["subscriptionIds"]) {
+        if (id.is_number_unsigned()) it->second.subscriptions.erase(id.get<std::uint32_t>());
+      }
+    }
+  }
+
+  void fan_out_foxglove(const std::vector<FoxgloveMessage>& messages) {
+    std::uint64_t sent = 0;
+    std::uint64_t dropped = 0;
+    for (const auto& [hdl, client] : foxglove) {
+      websocketpp::lib::error_code ec;
+      auto con = endpoint.get_con_from_hdl(hdl, ec);
+      if (ec) continue;
+      for (const auto& [id, channel] : client.subscriptions) {
+        for (const auto& m : messages) {
+          if (m.channel != channel) continue;
+          if (con->get_buffered_amount() > options.max_client_queue_bytes) {
+            ++dropped;
+          } else {
+            con->send(foxglove_frame(id, m), websocketpp::frame::opcode::binary);
+            ++sent;
+          }
+        }
+      }
+    }
+    std::lock_guard lock(stats_mutex);
+    stats.frames_sent += sent;
+    stats.frames_dropped += dropped;
   }
 
   void fan_out(const std::shared_ptr<const std::string>& frame) {
@@ -205,16 +294,10 @@ WebServer::WebServer(const ServerOptions& options, ApiHandler api, Greeting gree
   s.endpoint.set_max_http_body_size(options.max_body_bytes);
   s.endpoint.set_http_handler([&s](Handle hdl) { s.on_http(hdl); });
   s.endpoint.set_validate_handler([&s](Handle hdl) { return s.on_validate(hdl); });
-  s.endpoint.set_open_handler([&s](Handle hdl) {
-    s.clients.insert(hdl);
-    s.client_count = s.clients.size();
-    s.send(hdl, s.greeting());
-  });
-  s.endpoint.set_close_handler([&s](Handle hdl) {
-    s.clients.erase(hdl);
-    s.client_count = s.clients.size();
-  });
-  s.endpoint.set_fail_handler([&s](Handle hdl) { s.clients.erase(hdl); });
+  s.endpoint.set_open_handler([&s](Handle hdl) { s.on_open(hdl); });
+  s.endpoint.set_close_handler([&s](Handle hdl) { s.on_close(hdl); });
+  s.endpoint.set_fail_handler([&s](Handle hdl) { s.on_close(hdl); });
+  s.endpoint.set_message_handler([&s](Handle hdl, Endpoint::message_ptr message) { s.on_message(hdl, message); });
   websocketpp::lib::asio::error_code ec;
   const auto address = websocketpp::lib::asio::ip::address::from_string(
       options.address == "localhost" ? "127.0.0.1" : options.address, ec);
@@ -238,6 +321,9 @@ WebServer::~WebServer() {
     websocketpp::lib::error_code ec;
     s.endpoint.stop_listening(ec);
     for (const auto& hdl : s.clients) s.endpoint.close(hdl, websocketpp::close::status::going_away, "session ended", ec);
+    for (const auto& [hdl, client] : s.foxglove) {
+      s.endpoint.close(hdl, websocketpp::close::status::going_away, "session ended", ec);
+    }
   });
   // Give clients a moment to see the close frame, then stop the loop.
   std::this_thread::sleep_for(std::chrono::milliseconds(100));
@@ -250,6 +336,21 @@ void WebServer::broadcast(std::shared_ptr<const std::string> frame) {
   if (s.client_count == 0) return;
   websocketpp::lib::asio::post(s.endpoint.get_io_service(), [&s, frame = std::move(frame)] { s.fan_out(frame); });
 }
+
+void WebServer::publish_foxglove(std::vector<FoxgloveMessage> messages) {
+  auto& s = *impl_;
+  if (s.foxglove_count == 0) return;
+  websocketpp::lib::asio::post(s.endpoint.get_io_service(),
+                               [&s, messages = std::move(messages)] { s.fan_out_foxglove(messages); });
+}
+
+void WebServer::latch_foxglove(FoxgloveMessage message) {
+  auto& s = *impl_;
+  websocketpp::lib::asio::post(s.endpoint.get_io_service(),
+                               [&s, message = std::move(message)] { s.latched[message.channel] = message; });
+}
+
+std::size_t WebServer::foxglove_clients() const { return impl_->foxglove_count; }
 
 int WebServer::port() const { return impl_->port; }
 

@@ -9,6 +9,7 @@
 
 #include "freeplay/sim/sandtray.hpp"
 #include "freeplay/web/experiment.hpp"
+#include "freeplay/web/foxglove.hpp"
 #include "freeplay/web/state_frame.hpp"
 
 namespace freeplay::web {
@@ -69,12 +70,14 @@ class Session {
     freeplay_t_ = freeplay_t;
   }
 
-  void set_background(const sim::Sandtray& tray, nlohmann::json zones) {
+  // Keeps the new background (JPEG) and zones for the API; returns the JPEG.
+  std::string set_background(const sim::Sandtray& tray, nlohmann::json zones) {
     std::vector<uchar> jpeg;
     cv::imencode(".jpg", tray.background(), jpeg, {cv::IMWRITE_JPEG_QUALITY, kBackgroundJpegQuality});
     std::lock_guard lock(mutex_);
     background_ = std::string(jpeg.begin(), jpeg.end());
     zones_ = std::move(zones);
+    return background_;
   }
 
   HttpReply api(const HttpRequest& r) {
@@ -168,12 +171,24 @@ class WebObserver final : public runner::EpisodeObserver {
       session_.experiment().freeplay_started(static_cast<std::uint64_t>(tick_ms * 1e6));
     }
     auto frame = tick_json(s);
+    const auto stamp_ns = static_cast<std::uint64_t>(tick_ms * 1e6);
+    std::vector<FoxgloveMessage> foxglove;
+    if (server_.foxglove_clients() > 0) foxglove.push_back(foxglove_tf(*s.tray, stamp_ns));
+    if (!footprints_latched_) {
+      footprints_latched_ = true;
+      server_.latch_foxglove(foxglove_footprints(*s.tray, stamp_ns));
+    }
     if (s.tray->background_version() != background_version_) {
       background_version_ = s.tray->background_version();
       auto zones = zones_json(*s.tray);
       frame["zones"] = zones;
-      session_.set_background(*s.tray, std::move(zones));
+      const auto jpeg = session_.set_background(*s.tray, std::move(zones));
+      for (auto m : {foxglove_zones(*s.tray, stamp_ns), foxglove_background(jpeg, stamp_ns)}) {
+        server_.latch_foxglove(m);
+        foxglove.push_back(std::move(m));
+      }
     }
+    if (!foxglove.empty()) server_.publish_foxglove(std::move(foxglove));
     send(std::move(frame), std::string(s.stage), s.t, s.freeplay_t, tick_ms);
   }
 
@@ -214,6 +229,7 @@ class WebObserver final : public runner::EpisodeObserver {
   double t0_ = 0.0;
   std::uint64_t background_version_ = ~std::uint64_t{0};
   bool freeplay_seen_ = false;
+  bool footprints_latched_ = false;
   std::uint64_t seq_ = 0;
 };
 

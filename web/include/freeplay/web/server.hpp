@@ -2,7 +2,8 @@
 // The web server of `freeplay serve --web`: HTTP (the page's assets, the JSON API) and a WebSocket state stream on
 // one port (websocketpp over Boost.Asio, one I/O thread). Loopback by default; with a token every request and
 // every WebSocket must carry it (`?token=` or `Authorization: Bearer`). Each client's send queue is capped: while a
-// client is behind, state frames are dropped for it, so a slow page never grows the server's memory.
+// client is behind, state frames are dropped for it, so a slow page never grows the server's memory. A WebSocket
+// that asks for the `foxglove.websocket.v1` subprotocol (any path) speaks the Foxglove protocol instead.
 
 #include <atomic>
 #include <cstdint>
@@ -10,6 +11,9 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
+
+#include "freeplay/web/foxglove.hpp"
 
 namespace freeplay::web {
 
@@ -67,8 +71,15 @@ class WebServer {
   std::string url() const;
   /// Counters so far.
   ServerStats stats() const;
-  /// Number of connected WebSocket clients.
+  /// Number of connected WebSocket clients (pages and scripts).
   std::size_t clients() const;
+
+  /// Sends each message to the Foxglove clients subscribed to its channel (any thread; same queue cap).
+  void publish_foxglove(std::vector<FoxgloveMessage> messages);
+  /// Keeps `message` as its channel's latest: a new subscriber gets it at once (zones, footprints, background).
+  void latch_foxglove(FoxgloveMessage message);
+  /// Number of connected Foxglove clients (`foxglove.websocket.v1`).
+  std::size_t foxglove_clients() const;
 
  private:
   struct Impl;
