@@ -69,8 +69,11 @@ void run_web_serve(const std::string& file, const std::vector<std::string>& over
   options.linger = !o.no_linger;
   options.out = o.out.empty() ? std::filesystem::path("runs") / fmt::format("web-{:%Y%m%dT%H%M%S}", fmt::gmtime(std::time(nullptr)))
                               : std::filesystem::path(o.out);
-  options.on_listening = [](const std::string& url) {
+  const auto episode_seed = runner::episode_seed(seed.value_or(scenario.seed), 0);
+  options.on_listening = [&](const std::string& url) {
     std::cout << "web: " << url << std::endl;  // the first line of output: scripts and tests read the URL here
+    spdlog::info("serving '{}' (seed {}, rate {}×) on the web; session folder {}", scenario.name, episode_seed, rate,
+                 options.out.string());
   };
 #ifdef FREEPLAY_WITH_ROS
   // `sparc/selected_action` (the real WoZ GUI) becomes a move in the item's frame, checked as a page's command.
@@ -102,9 +105,6 @@ void run_web_serve(const std::string& file, const std::vector<std::string>& over
     throw InputError("this freeplay was built without ROS 1", "--web-ros", "install it with scripts/setup.sh and rebuild");
   }
 #endif
-  const auto episode_seed = runner::episode_seed(seed.value_or(scenario.seed), 0);
-  spdlog::info("serving '{}' (seed {}, rate {}×) on the web; session folder {}", scenario.name, episode_seed, rate,
-               options.out.string());
   const auto report = web::serve_web(scenario, episode_seed, options, stop);
   nlohmann::json summary{{"aborted", report.result.aborted},
                          {"duration_s", report.result.duration_s},

@@ -279,6 +279,10 @@ struct WebServer::Impl {
 
 WebServer::WebServer(const ServerOptions& options, ApiHandler api, Greeting greeting)
     : impl_(std::make_unique<Impl>()) {
+  websocketpp::lib::asio::error_code ec;
+  const auto address = websocketpp::lib::asio::ip::address::from_string(
+      options.address == "localhost" ? "127.0.0.1" : options.address, ec);
+  if (ec) throw InputError(fmt::format("--web: '{}' is not an IP address", options.address), "--web", "[ADDR:]PORT, e.g. 127.0.0.1:8080");
   if (!is_loopback(options.address) && options.token.empty()) {
     throw InputError(fmt::format("--web {}: serving beyond loopback needs an access token", options.address),
                      "--web-token", "a token of 16 or more characters, or a loopback address (127.0.0.1)");
@@ -298,10 +302,6 @@ WebServer::WebServer(const ServerOptions& options, ApiHandler api, Greeting gree
   s.endpoint.set_close_handler([&s](Handle hdl) { s.on_close(hdl); });
   s.endpoint.set_fail_handler([&s](Handle hdl) { s.on_close(hdl); });
   s.endpoint.set_message_handler([&s](Handle hdl, Endpoint::message_ptr message) { s.on_message(hdl, message); });
-  websocketpp::lib::asio::error_code ec;
-  const auto address = websocketpp::lib::asio::ip::address::from_string(
-      options.address == "localhost" ? "127.0.0.1" : options.address, ec);
-  if (ec) throw InputError(fmt::format("--web: '{}' is not an IP address", options.address), "--web", "[ADDR:]PORT, e.g. 127.0.0.1:8080");
   websocketpp::lib::error_code listen_error;
   s.endpoint.listen(websocketpp::lib::asio::ip::tcp::endpoint(address, static_cast<unsigned short>(options.port)),
                     listen_error);

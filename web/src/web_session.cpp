@@ -19,6 +19,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 constexpr int kBackgroundJpegQuality = 85;
+constexpr const char* kStartingFrame = R"({"type":"state","stage":"starting","items":[],"events":[]})";
 
 double unix_ms() {
   return std::chrono::duration<double, std::milli>(std::chrono::system_clock::now().time_since_epoch()).count();
@@ -56,7 +57,7 @@ class Session {
   // The full state a new client starts from.
   std::string greeting() const {
     std::lock_guard lock(mutex_);
-    return latest_full_.empty() ? R"({"type":"state","stage":"starting","items":[],"events":[]})" : latest_full_;
+    return latest_full_.empty() ? std::string(kStartingFrame) : latest_full_;
   }
 
   void publish(nlohmann::json frame, const std::string& stage, double t, double freeplay_t) {
@@ -247,13 +248,25 @@ class ObserverRef final : public runner::EpisodeObserver {
 
 WebSessionReport serve_web(const runner::Scenario& scenario, std::uint64_t seed, const WebSessionOptions& options,
                            const std::atomic<bool>& stop) {
+  // The server binds first, so a bad address or a port in use leaves no session folder behind; it is declared after
+  // the session so that it stops (joining its thread) before the session goes.
+  std::optional<Session> session;
+  std::atomic<Session*> ready{nullptr};
+  WebServer server(
+      options.server,
+      [&ready](const HttpRequest& r) {
+        auto* s = ready.load();
+        return s != nullptr ? s->api(r) : error_reply(503, "the session is starting");
+      },
+      [&ready] {
+        auto* s = ready.load();
+        return s != nullptr ? s->greeting() : std::string(kStartingFrame);
+      });
   std::filesystem::create_directories(options.out);
-  Session session(scenario, seed, options);
-  WebServer server(options.server, [&session](const HttpRequest& r) { return session.api(r); },
-                   [&session] { return session.greeting(); });
+  ready = &session.emplace(scenario, seed, options);
   if (options.on_listening) options.on_listening(server.url());
   if (options.on_commands) {
-    options.on_commands([&session](const std::string& body) { return session.api({"POST", "/api/command", {}, body}); });
+    options.on_commands([&session](const std::string& body) { return session->api({"POST", "/api/command", {}, body}); });
   }
   struct Detach {  // the other sources lose the session before it goes, however serve_web leaves
     const WebSessionOptions& options;
@@ -262,15 +275,15 @@ WebSessionReport serve_web(const runner::Scenario& scenario, std::uint64_t seed,
     }
   } detach{options};
   WebSessionReport report;
-  WebObserver observer(session, server, options.rate, report.ticks);
+  WebObserver observer(*session, server, options.rate, report.ticks);
   runner::EpisodeObservers observers;
   observers.push_back(std::make_unique<ObserverRef>(observer));
   const runner::EpisodeInfo info{&scenario, "web", seed};
   report.result = runner::run_episode(scenario, seed, runner::SharedModels::shipped(), stop, observers, info, nullptr,
-                                      session.robot());
+                                      session->robot());
   if (!report.result.aborted) {
     std::ofstream(options.out / "episode.json") << report.result.record.dump(2) << '\n';
-    while (options.linger && !session.finalised() && !stop.load()) {
+    while (options.linger && !session->finalised() && !stop.load()) {
       observer.idle_frame(report.result.simulated_s);
       std::this_thread::sleep_for(std::chrono::milliseconds(200));
     }
