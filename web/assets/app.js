@@ -274,6 +274,7 @@
     $('scenario').textContent = `${s.scenario} (${s.condition})`;
     $('cap').textContent = mmss(s.protocol.freeplay_cap_s);
     if (!s.robot) $('robot-panel').style.display = 'none';
+    for (const b of document.querySelectorAll('[data-look]')) if (!s.seats.includes(b.dataset.look)) b.style.display = 'none';
     participants();
     connect();
   });

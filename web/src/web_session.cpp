@@ -38,7 +38,7 @@ nlohmann::json events_json(const std::vector<Event>& events) {
 class Session {
  public:
   Session(const runner::Scenario& scenario, std::uint64_t seed, const WebSessionOptions& options)
-      : scenario_(scenario), log_(options.out / "events.jsonl"),
+      : log_(options.out / "events.jsonl"),
         experiment_(options.out / "experiment.yaml", scenario.condition,
                     std::chrono::duration_cast<std::chrono::seconds>(std::chrono::system_clock::now().time_since_epoch()).count(),
                     log_),
@@ -136,7 +136,6 @@ class Session {
     return json_reply(202, {{"ok", true}, {"type", c.type}});
   }
 
-  const runner::Scenario& scenario_;
   SessionLog log_;
   ExperimentManager experiment_;
   std::string scene_;

@@ -98,9 +98,9 @@ runner::RobotCommands WizardRobot::commands(double t, const sim::Sandtray& tray,
     inbox.swap(inbox_);
   }
   for (const auto& command : inbox) apply(command, t, tray, step);
-  if (speech_pending_) {  // the utterance is handed over; the policy hears it finished at the next tick
+  if (speech_pending_) {  // the policy's utterance is handed over; it hears it finished at the next tick
     speech_pending_ = false;
-    if (move_source_ != "wizard") policy_->on_result({policies::ActionResult::Kind::SpeechFinished, "", ""});
+    policy_->on_result({policies::ActionResult::Kind::SpeechFinished, "", ""});
   }
   run_policy(t, tray, step);
   if (executor_->status() == planning::MoveStatus::Running) {
@@ -171,12 +171,11 @@ void WizardRobot::apply(const Command& command, double t, const sim::Sandtray& t
     action = policies::CancelMove{};
   }
   log(tray, "wizard", "command", {{"command", command.type}, {"args", a}});
-  execute(action, "wizard", t, tray, step);
+  execute(action, "wizard", tray, step);
 }
 
-void WizardRobot::execute(const policies::Action& action, const std::string& source, double t,
-                          const sim::Sandtray& tray, Step& step) {
-  (void)t;
+void WizardRobot::execute(const policies::Action& action, const std::string& source, const sim::Sandtray& tray,
+                          Step& step) {
   auto data = describe(action);
   data["by"] = source;
   log(tray, source, "robot_action", data);
@@ -224,7 +223,7 @@ void WizardRobot::run_policy(double t, const sim::Sandtray& tray, Step& step) {
   std::erase_if(actions, [](const policies::Action& a) { return std::holds_alternative<policies::Wait>(a); });
   if (actions.empty()) return;
   if (mode_ == RobotMode::Autonomous) {
-    for (const auto& action : actions) execute(action, "policy", t, tray, step);
+    for (const auto& action : actions) execute(action, "policy", tray, step);
     return;
   }
   proposal_ = Proposal{next_proposal_id_++, std::move(actions), t, wall_seconds()};
@@ -240,7 +239,7 @@ void WizardRobot::decide_proposal(const std::string& decision, double t, const s
       {{"id", proposal.id}, {"decision", decision}, {"latency_s", t - proposal.proposed_t},
        {"wall_latency_s", wall_seconds() - proposal.proposed_wall_s}});
   if (decision == "accepted" || decision == "timeout_executed") {
-    for (const auto& action : proposal.actions) execute(action, "policy", t, tray, step);
+    for (const auto& action : proposal.actions) execute(action, "policy", tray, step);
   }
 }
 

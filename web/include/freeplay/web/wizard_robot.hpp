@@ -62,8 +62,7 @@ class WizardRobot final : public runner::RobotActionSource {
   struct Step;  // what one tick produces (finger poses, gaze and pointing targets)
 
   void apply(const Command& command, double t, const sim::Sandtray& tray, Step& step);
-  void execute(const policies::Action& action, const std::string& source, double t, const sim::Sandtray& tray,
-               Step& step);
+  void execute(const policies::Action& action, const std::string& source, const sim::Sandtray& tray, Step& step);
   void run_policy(double t, const sim::Sandtray& tray, Step& step);
   void decide_proposal(const std::string& decision, double t, const sim::Sandtray& tray, Step& step);
   void finish_move(const sim::Sandtray& tray);
