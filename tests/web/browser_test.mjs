@@ -116,7 +116,7 @@ try {
     return page;
   };
   const page = await open('');
-  const frozen = await open('&freeze=7.5');
+  const frozen = await open('&freeze=7.5&pictures=0');  // footprints in item colours: checked pixel by pixel
 
   // ---- the tray picture at t = 7.5 s against the expected one -------------------------------------------------
   await frozen.waitForFunction(() => window.__frozenAt !== undefined && window.__backgroundVersion === window.__state.background_version,
@@ -225,6 +225,10 @@ try {
   await page.click('[data-likert="4"]');
   await until('the marker and Likert in experiment.yaml', () => /interesting/.test(readText(yamlPath)) && /social-engagement: 4/.test(readText(yamlPath)));
   check(true, 'marker and Likert buttons write experiment.yaml');
+  await page.click('[data-marker=screenshot]');
+  const shot = await until('the screenshot file', () => fs.readdirSync(session).find((f) => /^freeplay-1-.*\.png$/.test(f)));
+  check(fs.statSync(path.join(session, shot)).size > 10000 && /screenshot/.test(readText(yamlPath)),
+        'the screenshot marker saves the game screen as the sessions did', shot);
 
   // ---- two pages, serialised commands, a page that leaves --------------------------------------------------------
   await Promise.all([page.evaluate(() => window.__send({ type: 'say', text: 'from page one' })),

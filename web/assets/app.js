@@ -3,6 +3,8 @@
 (() => {
   const token = new URLSearchParams(location.search).get('token') || '';
   const freezeAt = parseFloat(new URLSearchParams(location.search).get('freeze') || 'NaN');
+  const pictures = new URLSearchParams(location.search).get('pictures') !== '0';  // 0: footprint polygons only
+  const picture = {};
   const withToken = (path) => token ? `${path}${path.includes('?') ? '&' : '?'}token=${encodeURIComponent(token)}` : path;
   const $ = (id) => document.getElementById(id);
   const canvas = $('tray');
@@ -91,11 +93,21 @@
     for (const it of items) {
       if (!it.visible) continue;
       const spec = scene.items.find((s) => s.name === it.name);
+      const [cx, cy] = toPx(it.x, it.y);
+      const img = picture[it.name];
+      if (pictures && img && img.complete) {  // the game's picture, rotated as on the screen (θ is CCW in sandtray)
+        const side = spec.box_side_m / W() * canvas.width;
+        ctx.save(); ctx.translate(cx, cy); ctx.rotate(-it.theta); ctx.drawImage(img, -side / 2, -side / 2, side, side); ctx.restore();
+        if (it.holder !== 'none') {
+          polygon(spec.polygon, it.x, it.y, it.theta);
+          ctx.strokeStyle = it.holder === 'robot' ? '#3fa9f5' : '#fff'; ctx.lineWidth = 3; ctx.stroke();
+        }
+        continue;
+      }
       polygon(spec.polygon, it.x, it.y, it.theta);
       ctx.fillStyle = `rgba(${spec.colour.join(',')},0.92)`; ctx.fill();
       ctx.strokeStyle = it.holder === 'robot' ? '#3fa9f5' : it.holder === 'finger' ? '#fff' : '#222';
       ctx.lineWidth = it.holder === 'none' ? 1 : 3; ctx.stroke();
-      const [cx, cy] = toPx(it.x, it.y);
       ctx.fillStyle = '#111'; ctx.font = '12px sans-serif'; ctx.textAlign = 'center';
       ctx.fillText(spec.label, cx, cy + 4);
     }
@@ -271,6 +283,14 @@
   fetch(withToken('/api/scene')).then((r) => r.json()).then((s) => {
     scene = s;
     window.__scene = s;
+    if (pictures) {
+      for (const item of s.items) {
+        const img = new Image();
+        img.onload = schedule;
+        img.src = withToken(`/api/item/${item.name}.png`);
+        picture[item.name] = img;
+      }
+    }
     $('scenario').textContent = `${s.scenario} (${s.condition})`;
     $('cap').textContent = mmss(s.protocol.freeplay_cap_s);
     if (!s.robot) $('robot-panel').style.display = 'none';

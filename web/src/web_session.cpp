@@ -1,13 +1,16 @@
 #include "freeplay/web/web_session.hpp"
 
+#include <fmt/chrono.h>
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <ctime>
 #include <opencv2/imgcodecs.hpp>
 #include <thread>
 
 #include "freeplay/sim/sandtray.hpp"
+#include "freeplay/sim/screen_renderer.hpp"
 #include "freeplay/web/experiment.hpp"
 #include "freeplay/web/foxglove.hpp"
 #include "freeplay/web/state_frame.hpp"
@@ -19,6 +22,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 constexpr int kBackgroundJpegQuality = 85;
+constexpr int kItemPicturePx = 160;  // the page scales the game's item pictures down to their on-screen size
 constexpr const char* kStartingFrame = R"({"type":"state","stage":"starting","items":[],"events":[]})";
 
 double unix_ms() {
@@ -43,7 +47,12 @@ class Session {
                     std::chrono::duration_cast<std::chrono::seconds>(std::chrono::system_clock::now().time_since_epoch()).count(),
                     log_),
         scene_(scene_json(*runner::SharedModels::shipped().catalogue, scenario).dump()) {
-    for (const auto& item : runner::SharedModels::shipped().catalogue->items()) item_names_.push_back(item.name);
+    for (const auto& item : runner::SharedModels::shipped().catalogue->items()) {
+      item_names_.push_back(item.name);
+      std::vector<uchar> png;
+      cv::imencode(".png", sim::item_picture(item, kItemPicturePx), png);
+      item_pictures_["/api/item/" + item.name + ".png"] = std::string(png.begin(), png.end());
+    }
     if (scenario.condition == "child-robot") {
       robot_ = std::make_unique<WizardRobot>(scenario, seed, log_, options.mode, options.sparc_timeout_s);
     }
@@ -53,6 +62,8 @@ class Session {
   SessionLog& log() { return log_; }
   ExperimentManager& experiment() { return experiment_; }
   bool finalised() const { return finalised_; }
+  /// Takes the screenshot requests made since the last call (sim thread).
+  int take_screenshot_requests() { return screenshots_requested_.exchange(0); }
 
   // The full state a new client starts from.
   std::string greeting() const {
@@ -94,13 +105,14 @@ class Session {
     if (r.path == "/api/scene") return {200, "application/json", scene_};
     if (r.path == "/api/state") return {200, "application/json", greeting()};
     if (r.path == "/api/events") return json_reply(200, events_json(log_.all()));
+    if (const auto it = item_pictures_.find(r.path); it != item_pictures_.end()) return {200, "image/png", it->second};
     if (r.path == "/api/background.jpg") {
       std::lock_guard lock(mutex_);
       if (background_.empty()) return error_reply(404, "no background published yet");
       return {200, "image/jpeg", background_};
     }
     return error_reply(404, fmt::format("no such endpoint: {} (allowed: /api/scene, /api/state, /api/events, "
-                                        "/api/background.jpg, /api/command)", r.path));
+                                        "/api/background.jpg, /api/item/<item>.png, /api/command)", r.path));
   }
 
  private:
@@ -118,6 +130,7 @@ class Session {
       case CommandTarget::Experiment:
         experiment_.apply(c, freeplay_t, t);
         if (c.type == "finalise") finalised_ = true;
+        if (c.type == "marker" && c.args["kind"] == "screenshot") ++screenshots_requested_;
         return json_reply(200, {{"ok", true}, {"type", c.type}, {"experiment", experiment_.state()}});
       case CommandTarget::Protocol: {
         const auto topic = "sandtray/signals/" + c.args["name"].get<std::string>();
@@ -140,8 +153,10 @@ class Session {
   ExperimentManager experiment_;
   std::string scene_;
   std::vector<std::string> item_names_;
+  std::map<std::string, std::string> item_pictures_;  // API path → PNG
   std::unique_ptr<WizardRobot> robot_;
   std::atomic<bool> finalised_{false};
+  std::atomic<int> screenshots_requested_{0};
   mutable std::mutex mutex_;
   std::string latest_full_;
   std::string background_;
@@ -154,8 +169,8 @@ class Session {
 /// Paces the episode to the wall clock and turns every tick into a state frame for the page.
 class WebObserver final : public runner::EpisodeObserver {
  public:
-  WebObserver(Session& session, WebServer& server, double rate, std::size_t& ticks)
-      : session_(session), server_(server), rate_(rate), ticks_(ticks) {}
+  WebObserver(Session& session, WebServer& server, double rate, std::filesystem::path out, std::size_t& ticks)
+      : session_(session), server_(server), rate_(rate), out_(std::move(out)), ticks_(ticks) {}
 
   void observe(const runner::EpisodeSnapshot& s) override {
     pace(s.t);
@@ -189,6 +204,7 @@ class WebObserver final : public runner::EpisodeObserver {
       }
     }
     if (!foxglove.empty()) server_.publish_foxglove(std::move(foxglove));
+    if (session_.take_screenshot_requests() > 0) screenshot(*s.tray, s.t);
     send(std::move(frame), std::string(s.stage), s.t, s.freeplay_t, tick_ms);
   }
 
@@ -212,6 +228,14 @@ class WebObserver final : public runner::EpisodeObserver {
     ++ticks_;
   }
 
+  // The screenshot marker, as the supervisor's `sandtray/screenshot`: the game's screen as a PNG in the session
+  // folder, named as the PInSoRo sessions' screenshots (freeplay-<n>-<date>_<time>.png).
+  void screenshot(const sim::Sandtray& tray, double t) {
+    const auto name = fmt::format("freeplay-{}-{:%Y-%m-%d_%H-%M-%S}.png", ++screenshots_, fmt::gmtime(std::time(nullptr)));
+    cv::imwrite((out_ / name).string(), tray.render_screen());
+    session_.log().add({t, "experiment", "screenshot_saved", {{"file", name}}});
+  }
+
   void pace(double t) {
     if (!start_) {
       start_ = Clock::now();
@@ -224,7 +248,9 @@ class WebObserver final : public runner::EpisodeObserver {
   Session& session_;
   WebServer& server_;
   double rate_;
+  std::filesystem::path out_;
   std::size_t& ticks_;
+  int screenshots_ = 0;
   std::optional<Clock::time_point> start_;
   double t0_ = 0.0;
   std::uint64_t background_version_ = ~std::uint64_t{0};
@@ -274,7 +300,7 @@ WebSessionReport serve_web(const runner::Scenario& scenario, std::uint64_t seed,
     }
   } detach{options};
   WebSessionReport report;
-  WebObserver observer(*session, server, options.rate, report.ticks);
+  WebObserver observer(*session, server, options.rate, options.out, report.ticks);
   runner::EpisodeObservers observers;
   observers.push_back(std::make_unique<ObserverRef>(observer));
   const runner::EpisodeInfo info{&scenario, "web", seed};
