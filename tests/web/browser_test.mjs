@@ -265,6 +265,15 @@ try {
   console.log(`state push latency tick→page: ${JSON.stringify(latency)}`);
   fs.writeFileSync(path.join(out, 'latency.json'), JSON.stringify(latency) + '\n');
   await page.screenshot({ path: path.join(out, 'web.png') });
+
+  // ---- the 3-D view on request (after the latency figures: it renders on the simulation thread) ----------------
+  await page.select('#camera', 'env_camera');
+  const camera = await until('a stage camera image', () => page.evaluate(() => {
+    const img = document.getElementById('camera-img');
+    return !img.hidden && img.complete && img.naturalWidth > 0 ? [img.naturalWidth, img.naturalHeight] : null;
+  }), 30000);
+  check(camera[0] === 480 && camera[1] === 270, 'the 3-D camera view shows env_camera on request', camera.join('×'));
+  await page.screenshot({ path: path.join(out, 'web-camera.png'), fullPage: true });
 } catch (e) {
   check(false, 'the browser test ran to the end', String(e && e.stack || e));
 } finally {

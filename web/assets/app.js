@@ -12,7 +12,7 @@
   const seatColour = { purple: '#9b59d0', yellow: '#e8c21c' };
   const presets = ['Hello!', 'Your turn!', 'Well done!', 'Where shall I put it?', 'Let us play together', 'Goodbye!'];
   let scene = null, state = null, zones = [], events = [], background = null, backgroundVersion = -1;
-  let drag = null, clickMode = null, frozen = false, drawPending = false;
+  let drag = null, clickMode = null, frozen = false, drawPending = false, cameraVersion = 0;
   const timelines = {};
   window.__latencies = [];
   window.__frames = 0;
@@ -207,6 +207,12 @@
       img.onload = () => { background = img; window.__backgroundVersion = backgroundVersion; schedule(); };
       img.src = withToken(`/api/background.jpg?v=${backgroundVersion}`);
     }
+    const cam = frame.camera;
+    $('camera-img').hidden = !cam;
+    if (cam && cam.version > 0 && cam.version !== cameraVersion) {
+      cameraVersion = cam.version;
+      $('camera-img').src = withToken(`/api/camera.jpg?v=${cam.version}`);
+    }
     if (!isNaN(freezeAt) && state.t >= freezeAt) { frozen = true; window.__frozenAt = state.t; }
     updatePanels();
     schedule();
@@ -268,6 +274,7 @@
     $('likert').append(b);
   }
   $('finalise').onclick = () => send({ type: 'finalise' });
+  $('camera').onchange = () => send({ type: 'camera', name: $('camera').value });
   $('demographics').addEventListener('submit', async (ev) => {
     ev.preventDefault();
     await send({ type: 'condition', condition: document.querySelector('select[name=condition]').value });

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <set>
 
+#include "freeplay/runner/settings.hpp"
 #include "freeplay/sim/sandtray.hpp"
 #include "freeplay/sim/screen.hpp"
 
@@ -105,7 +106,7 @@ nlohmann::json child_record(const nlohmann::json& object, const std::string& sea
 const std::vector<std::string>& types() {
   static const std::vector<std::string> kTypes = {"move", "say", "look_at", "point_at", "stop", "mode", "sparc",
                                                   "sparc_timeout", "signal", "condition", "demographics", "marker",
-                                                  "note", "likert", "finalise"};
+                                                  "note", "likert", "finalise", "camera"};
   return kTypes;
 }
 
@@ -183,14 +184,19 @@ Command parse_command(const std::string& body, const std::vector<std::string>& i
     a["text"] = f.has("text") ? f.text("text", true) : "";
   } else if (c.type == "note") {
     a["text"] = f.text("text");
+  } else if (c.type == "camera") {
+    auto names = runner::ScenarioVocabulary{}.cameras;
+    names.emplace_back("off");
+    a["name"] = f.one_of("name", names);
   } else if (c.type == "likert") {
     a["social_engagement"] = f.integer("social_engagement", 1, 5);
   }
   if (f.has("via")) a["via"] = f.text("via");  // where a command came from, when not from a page
   f.no_other_keys();
   static const std::set<std::string> kProtocol = {"signal"};
-  static const std::set<std::string> kExperiment = {"condition", "demographics", "marker", "note", "likert", "finalise"};
-  c.target = kProtocol.contains(c.type) ? CommandTarget::Protocol
+  static const std::set<std::string> kExperiment = {"condition", "demographics", "marker", "note", "likert", "finalise", "camera"};
+  c.target = c.type == "camera"               ? CommandTarget::View
+             : kProtocol.contains(c.type) ? CommandTarget::Protocol
              : kExperiment.contains(c.type) ? CommandTarget::Experiment
                                             : CommandTarget::Robot;
   return c;

@@ -7,8 +7,11 @@
 #include <chrono>
 #include <ctime>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <thread>
 
+#include "freeplay/runner/camera_rig.hpp"
+#include "freeplay/runner/frame_sink.hpp"
 #include "freeplay/sim/sandtray.hpp"
 #include "freeplay/sim/screen_renderer.hpp"
 #include "freeplay/web/experiment.hpp"
@@ -22,7 +25,10 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 constexpr int kBackgroundJpegQuality = 85;
-constexpr int kItemPicturePx = 160;  // the page scales the game's item pictures down to their on-screen size
+constexpr int kItemPicturePx = 160;
+constexpr double kCameraRateHz = 1.0;  // the 3-D view is a glance, not a video: rendering runs on the sim thread
+constexpr int kCameraWidthPx = 480;
+constexpr int kCameraHeightPx = 270;  // the page scales the game's item pictures down to their on-screen size
 constexpr const char* kStartingFrame = R"({"type":"state","stage":"starting","items":[],"events":[]})";
 
 double unix_ms() {
@@ -62,6 +68,21 @@ class Session {
   SessionLog& log() { return log_; }
   ExperimentManager& experiment() { return experiment_; }
   bool finalised() const { return finalised_; }
+  /// The camera the page asked for since the last call ("off" to stop; nullopt: no change).
+  std::optional<std::string> take_camera_request() {
+    std::lock_guard lock(mutex_);
+    auto out = std::move(camera_request_);
+    camera_request_.reset();
+    return out;
+  }
+
+  /// Keeps the latest 3-D camera image (JPEG) for `GET /api/camera.jpg`; returns its version.
+  std::uint64_t set_camera(std::string jpeg) {
+    std::lock_guard lock(mutex_);
+    camera_ = std::move(jpeg);
+    return ++camera_version_;
+  }
+
   /// Takes the screenshot requests made since the last call (sim thread).
   int take_screenshot_requests() { return screenshots_requested_.exchange(0); }
 
@@ -106,13 +127,18 @@ class Session {
     if (r.path == "/api/state") return {200, "application/json", greeting()};
     if (r.path == "/api/events") return json_reply(200, events_json(log_.all()));
     if (const auto it = item_pictures_.find(r.path); it != item_pictures_.end()) return {200, "image/png", it->second};
+    if (r.path == "/api/camera.jpg") {
+      std::lock_guard lock(mutex_);
+      if (camera_.empty()) return error_reply(404, "no camera image yet (send {\"type\":\"camera\",\"name\":…})");
+      return {200, "image/jpeg", camera_};
+    }
     if (r.path == "/api/background.jpg") {
       std::lock_guard lock(mutex_);
       if (background_.empty()) return error_reply(404, "no background published yet");
       return {200, "image/jpeg", background_};
     }
     return error_reply(404, fmt::format("no such endpoint: {} (allowed: /api/scene, /api/state, /api/events, "
-                                        "/api/background.jpg, /api/item/<item>.png, /api/command)", r.path));
+                                        "/api/background.jpg, /api/item/<item>.png, /api/camera.jpg, /api/command)", r.path));
   }
 
  private:
@@ -137,6 +163,11 @@ class Session {
         log_.add({t, "experimenter", "signal", {{"name", c.args["name"]}, {"topic", topic}}});
         return json_reply(202, {{"ok", true}, {"type", c.type}, {"topic", topic}});
       }
+      case CommandTarget::View: {
+        std::lock_guard lock(mutex_);
+        camera_request_ = c.args["name"].get<std::string>();
+        return json_reply(202, {{"ok", true}, {"type", c.type}});
+      }
       case CommandTarget::Robot: break;
     }
     if (!robot_) return error_reply(409, fmt::format("'{}': a child-child session has no robot", c.type));
@@ -160,17 +191,43 @@ class Session {
   mutable std::mutex mutex_;
   std::string latest_full_;
   std::string background_;
+  std::optional<std::string> camera_request_;
+  std::string camera_;
+  std::uint64_t camera_version_ = 0;
   nlohmann::json zones_ = nlohmann::json::array();
   std::string stage_ = "starting";
   double t_ = 0.0;
   double freeplay_t_ = -1e9;
 };
 
+/// The 3-D camera view the page asked for: each rendered frame becomes the session's JPEG.
+class CameraSink final : public runner::FrameSink {
+ public:
+  explicit CameraSink(Session& session) : session_(session) {}
+  void write(const stage::FramePack& frame) override {
+    cv::Mat bgr;
+    cv::cvtColor(frame.rgb, bgr, cv::COLOR_RGB2BGR);
+    std::vector<uchar> jpeg;
+    cv::imencode(".jpg", bgr, jpeg, {cv::IMWRITE_JPEG_QUALITY, kBackgroundJpegQuality});
+    version_ = session_.set_camera(std::string(jpeg.begin(), jpeg.end()));
+    stamp_ = frame.stamp;
+  }
+  /// The latest image's version and stamp.
+  std::pair<std::uint64_t, double> latest() const { return {version_, stamp_}; }
+
+ private:
+  Session& session_;
+  std::uint64_t version_ = 0;
+  double stamp_ = 0.0;
+};
+
 /// Paces the episode to the wall clock and turns every tick into a state frame for the page.
 class WebObserver final : public runner::EpisodeObserver {
  public:
-  WebObserver(Session& session, WebServer& server, double rate, std::filesystem::path out, std::size_t& ticks)
-      : session_(session), server_(server), rate_(rate), out_(std::move(out)), ticks_(ticks) {}
+  WebObserver(Session& session, WebServer& server, const runner::EpisodeInfo& info, double rate,
+              std::filesystem::path out, std::size_t& ticks)
+      : session_(session), server_(server), info_(info), rate_(rate), out_(std::move(out)), ticks_(ticks),
+        camera_sink_(session) {}
 
   void observe(const runner::EpisodeSnapshot& s) override {
     pace(s.t);
@@ -205,6 +262,7 @@ class WebObserver final : public runner::EpisodeObserver {
     }
     if (!foxglove.empty()) server_.publish_foxglove(std::move(foxglove));
     if (session_.take_screenshot_requests() > 0) screenshot(*s.tray, s.t);
+    camera(s, frame);
     send(std::move(frame), std::string(s.stage), s.t, s.freeplay_t, tick_ms);
   }
 
@@ -236,6 +294,38 @@ class WebObserver final : public runner::EpisodeObserver {
     session_.log().add({t, "experiment", "screenshot_saved", {{"file", name}}});
   }
 
+  // The 3-D view on request: one stage camera at 1 Hz, 480 × 270, rendered on this thread while the page wants it.
+  void camera(const runner::EpisodeSnapshot& s, nlohmann::json& frame) {
+    if (auto request = session_.take_camera_request()) {
+      rig_.reset();
+      camera_name_.clear();
+      if (*request != "off") {
+        camera_scenario_ = *info_.scenario;
+        camera_scenario_.cameras = {{*request, kCameraRateHz, kCameraWidthPx, kCameraHeightPx, false, false}};
+        try {
+          rig_ = std::make_unique<runner::CameraRig>(camera_scenario_, runner::renderer_options(camera_scenario_.rendering),
+                                                     std::vector<runner::FrameSink*>{&camera_sink_});
+          rig_->begin(info_);
+          camera_name_ = *request;
+        } catch (const std::exception& e) {
+          session_.log().add({s.t, "web", "camera_failed", {{"camera", *request}, {"error", e.what()}}});
+        }
+      }
+      session_.log().add({s.t, "web", "camera", {{"camera", *request}}});
+    }
+    if (rig_) {
+      try {
+        rig_->observe(s);
+      } catch (const std::exception& e) {
+        session_.log().add({s.t, "web", "camera_failed", {{"camera", camera_name_}, {"error", e.what()}}});
+        rig_.reset();
+        camera_name_.clear();
+      }
+    }
+    const auto [version, stamp] = camera_sink_.latest();
+    frame["camera"] = camera_name_.empty() ? nlohmann::json() : nlohmann::json{{"name", camera_name_}, {"version", version}, {"stamp", stamp}};
+  }
+
   void pace(double t) {
     if (!start_) {
       start_ = Clock::now();
@@ -247,10 +337,15 @@ class WebObserver final : public runner::EpisodeObserver {
 
   Session& session_;
   WebServer& server_;
+  runner::EpisodeInfo info_;
   double rate_;
   std::filesystem::path out_;
   std::size_t& ticks_;
   int screenshots_ = 0;
+  CameraSink camera_sink_;
+  runner::Scenario camera_scenario_;
+  std::unique_ptr<runner::CameraRig> rig_;
+  std::string camera_name_;
   std::optional<Clock::time_point> start_;
   double t0_ = 0.0;
   std::uint64_t background_version_ = ~std::uint64_t{0};
@@ -300,10 +395,10 @@ WebSessionReport serve_web(const runner::Scenario& scenario, std::uint64_t seed,
     }
   } detach{options};
   WebSessionReport report;
-  WebObserver observer(*session, server, options.rate, options.out, report.ticks);
+  const runner::EpisodeInfo info{&scenario, "web", seed};
+  WebObserver observer(*session, server, info, options.rate, options.out, report.ticks);
   runner::EpisodeObservers observers;
   observers.push_back(std::make_unique<ObserverRef>(observer));
-  const runner::EpisodeInfo info{&scenario, "web", seed};
   report.result = runner::run_episode(scenario, seed, runner::SharedModels::shipped(), stop, observers, info, nullptr,
                                       session->robot());
   if (!report.result.aborted) {
