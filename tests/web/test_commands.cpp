@@ -66,4 +66,9 @@ TEST(WebCommands, ExperimentAndProtocolCommandsAreChecked) {
   EXPECT_NE(refusal(R"({"type":"say","text":""})").second.find("1…500"), std::string::npos);
   EXPECT_EQ(parse_command(R"({"type":"mode","mode":"supervised"})", kItems).args["mode"], "supervised");
   EXPECT_EQ(refusal(R"({"type":"sparc_timeout","seconds":0})").first, 400);
+  EXPECT_EQ(parse_command(R"({"type":"camera","name":"env_camera"})", kItems).target, CommandTarget::View);
+  EXPECT_NE(refusal(R"({"type":"camera","name":"webcam"})").second.find("env_camera"), std::string::npos);
+  const auto relative = parse_command(R"({"type":"move","item":"ball","x":-0.05,"y":0.02,"frame":"item","via":"sparc/selected_action"})", kItems);
+  EXPECT_EQ(relative.args["frame"], "item");
+  EXPECT_EQ(relative.args["via"], "sparc/selected_action");
 }
