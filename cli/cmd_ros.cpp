@@ -11,6 +11,7 @@
 
 #include "command_registry.hpp"
 #include "freeplay/core/error.hpp"
+#include "serve_web.hpp"
 
 #ifdef FREEPLAY_WITH_ROS
 #include "freeplay/ros/robot_node.hpp"
@@ -50,9 +51,21 @@ struct ServeCommandOptions {
   double rate = 1.0;
   std::string robot = "sim";
   double master_timeout_s = 10.0;
+  WebCliOptions web;
 };
 
 void serve_command(const ServeCommandOptions& o) {
+  if (!o.web.listen.empty()) {  // the web page needs no ROS master
+    if (o.robot == "external") {
+      throw InputError("--web drives the robot from the page: it cannot take --robot external", "--robot", "sim");
+    }
+    std::signal(SIGINT, on_ros_interrupt);
+    std::signal(SIGTERM, on_ros_interrupt);
+    auto web = o.web;
+    web.master_timeout_s = o.master_timeout_s;
+    run_web_serve(o.file, o.overrides, o.seed, o.rate, web, g_ros_stop);
+    return;
+  }
 #ifdef FREEPLAY_WITH_ROS
   auto scenario = runner::load_scenario(o.file, o.overrides, scenario_vocabulary());
   if (o.robot == "external" && scenario.condition != "child-robot") {
@@ -147,6 +160,7 @@ const RegisterCommand kServe(60, [](CLI::App& program) {
       ->check(CLI::IsMember({"sim", "external"}));
   cmd->add_option("--master-timeout", o->master_timeout_s, "Seconds to wait for the ROS master")
       ->check(CLI::Range(0.1, 3600.0));
+  add_web_options(*cmd, o->web);
   cmd->callback([o] { serve_command(*o); });
 });
 

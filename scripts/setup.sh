@@ -20,7 +20,10 @@ packages=(
   zlib1g-dev linux-perf valgrind
   clang libclang-rt-14-dev
   libopencv-contrib-dev  # ArUco markers for the fiducial localisation (localisation/)
+  # the experimenter's web page (web/: websocketpp over Boost.Asio) and its headless-browser test (tests/web/)
+  libwebsocketpp-dev libasio-dev libboost-system-dev chromium nodejs
 )
+command -v npm >/dev/null 2>&1 || packages+=(npm)  # Debian's npm (a NodeSource nodejs ships its own)
 for arg in "$@"; do
   case "$arg" in
     --with-ros) ;;  # the ROS 1 bag packages are in the default list now (recording and its tests need them)

@@ -1,0 +1,88 @@
+#include <arpa/inet.h>
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+#include <yaml-cpp/yaml.h>
+
+#include <fstream>
+
+#include "freeplay/core/yaml_schema.hpp"
+#include "freeplay/web/web_session.hpp"
+
+using namespace freeplay;
+using namespace freeplay::web;
+
+namespace {
+
+// POSTs `body` to /api/command on 127.0.0.1:`port`: the status code and the body.
+std::pair<int, std::string> post(int port, const std::string& body) {
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_port = htons(static_cast<std::uint16_t>(port));
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) return {-1, ""};
+  const auto request = fmt::format("POST /api/command HTTP/1.1\r\nHost: x\r\nConnection: close\r\nContent-Length: {}\r\n\r\n{}",
+                                   body.size(), body);
+  (void)!write(fd, request.data(), request.size());
+  std::string response;
+  char buffer[4096];
+  for (ssize_t n; (n = read(fd, buffer, sizeof buffer)) > 0;) response.append(buffer, static_cast<std::size_t>(n));
+  close(fd);
+  const auto at = response.find("\r\n\r\n");
+  return {std::stoi(response.substr(9, 3)), at == std::string::npos ? "" : response.substr(at + 4)};
+}
+
+}  // namespace
+
+TEST(WebSession, AChildChildSessionTakesExperimentCommandsAndRefusesRobotOnes) {
+  const auto scenario = runner::scenario_from_document(parse_yaml(
+      "name: t\ncondition: child-child\nprotocol: {greeting_s: 1, tutorial_s: 1, freeplay_cap_s: 5, debriefing_s: 1}\n",
+      "test.yaml"));
+  const auto out = std::filesystem::temp_directory_path() / "freeplay-web-session";
+  std::filesystem::remove_all(out);
+  WebSessionOptions options;
+  options.server.port = 0;
+  options.rate = 50.0;
+  options.out = out;
+  options.linger = false;
+  std::vector<std::pair<int, std::string>> answers;
+  options.on_listening = [&](const std::string& url) {
+    const int port = std::stoi(url.substr(url.rfind(':') + 1));
+    answers.push_back(post(port, R"({"type":"move","item":"zebra","x":0.3,"y":-0.1})"));
+    answers.push_back(post(port, R"({"type":"demographics","purple":{"age":5,"gender":"male","tablet_familiarity":"1"},
+                                     "yellow":{"age":8,"gender":"female","tablet_familiarity":"0"}})"));
+    answers.push_back(post(port, R"({"type":"signal","name":"start_tutorial"})"));
+    answers.push_back(post(port, R"({"type":"marker","kind":"issue"})"));
+  };
+  const std::atomic<bool> stop{false};
+  const auto report = serve_web(scenario, 5, options, stop);
+  ASSERT_FALSE(report.result.aborted);
+  ASSERT_EQ(answers.size(), 4u);
+  EXPECT_EQ(answers[0].first, 409);
+  EXPECT_NE(answers[0].second.find("no robot"), std::string::npos);
+  EXPECT_EQ(answers[1].first, 200);
+  EXPECT_EQ(answers[2].first, 202);
+  EXPECT_NE(answers[2].second.find("sandtray/signals/start_tutorial"), std::string::npos);
+  EXPECT_EQ(answers[3].first, 409);  // before free play
+  const auto yaml = YAML::LoadFile((out / "experiment.yaml").string());
+  EXPECT_EQ(yaml["condition"].as<std::string>(), "childchild");
+  EXPECT_EQ(yaml["yellow-participant"]["age"].as<int>(), 8);
+  EXPECT_GT(yaml["timestamp"].as<std::uint64_t>(), 0u);  // free play started
+  std::ifstream events(out / "events.jsonl");
+  std::string line;
+  int episode_events = 0;
+  int signals = 0;
+  while (std::getline(events, line)) {
+    const auto e = nlohmann::json::parse(line);
+    episode_events += e["source"] == "protocol" ? 1 : 0;
+    signals += e["source"] == "experimenter" && e["type"] == "signal" ? 1 : 0;
+  }
+  EXPECT_GE(episode_events, 4);  // the stages and the end of free play
+  EXPECT_EQ(signals, 1);
+  EXPECT_TRUE(std::filesystem::exists(out / "episode.json"));
+  EXPECT_GT(report.ticks, 60u);  // ≈ 80 ticks of 0.1 s
+  EXPECT_EQ(report.server.refused, 2u);
+}

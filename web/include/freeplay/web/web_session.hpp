@@ -1,0 +1,45 @@
+#pragma once
+// `freeplay serve SCENARIO --web [ADDR:]PORT`: one live episode in real time (or `rate`×) watched and driven from
+// the experimenter's web page, without a ROS master. See docs/web.md.
+
+#include <atomic>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+
+#include "freeplay/runner/episode.hpp"
+#include "freeplay/web/server.hpp"
+#include "freeplay/web/wizard_robot.hpp"
+
+namespace freeplay::web {
+
+/// Submits a command body as `POST /api/command` does (any thread) and answers as the API would.
+using CommandSink = std::function<HttpReply(const std::string& body)>;
+
+/// Settings of a web session.
+struct WebSessionOptions {
+  ServerOptions server;                        ///< where to listen, token, queue caps
+  double rate = 1.0;                           ///< simulated seconds per wall second
+  std::filesystem::path out;                   ///< session folder: events.jsonl, experiment.yaml
+  RobotMode mode = RobotMode::Autonomous;      ///< who drives the robot at the start
+  double sparc_timeout_s = 2.0;                ///< SPARC: a proposal executes after this many seconds unless vetoed
+  bool linger = true;                          ///< after the episode, serve until `finalise` or the stop flag
+  std::function<void(const std::string& url)> on_listening;  ///< told the page's URL once the server listens
+  std::function<void(CommandSink)> on_commands;  ///< given the session's command entry (other sources: ROS), then
+                                                 ///< an empty one when the session ends
+};
+
+/// What a web session produced besides the episode.
+struct WebSessionReport {
+  runner::EpisodeResult result;  ///< the episode
+  ServerStats server;            ///< the server's counters
+  std::size_t ticks = 0;         ///< state frames built
+};
+
+/// Runs one live episode of `scenario` from root seed `seed` served on the web; returns once it ended and (with
+/// `linger`) the session was finalised, or early (aborted) when `stop` is set during the episode.
+WebSessionReport serve_web(const runner::Scenario& scenario, std::uint64_t seed, const WebSessionOptions& options,
+                           const std::atomic<bool>& stop);
+
+}  // namespace freeplay::web

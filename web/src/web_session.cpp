@@ -1,0 +1,416 @@
+#include "freeplay/web/web_session.hpp"
+
+#include <fmt/chrono.h>
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <ctime>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <thread>
+
+#include "freeplay/runner/camera_rig.hpp"
+#include "freeplay/runner/frame_sink.hpp"
+#include "freeplay/sim/sandtray.hpp"
+#include "freeplay/sim/screen_renderer.hpp"
+#include "freeplay/web/experiment.hpp"
+#include "freeplay/web/foxglove.hpp"
+#include "freeplay/web/state_frame.hpp"
+
+namespace freeplay::web {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr int kBackgroundJpegQuality = 85;
+constexpr int kItemPicturePx = 160;
+constexpr double kCameraRateHz = 1.0;  // the 3-D view is a glance, not a video: rendering runs on the sim thread
+constexpr int kCameraWidthPx = 480;
+constexpr int kCameraHeightPx = 270;  // the page scales the game's item pictures down to their on-screen size
+constexpr const char* kStartingFrame = R"({"type":"state","stage":"starting","items":[],"events":[]})";
+
+double unix_ms() {
+  return std::chrono::duration<double, std::milli>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+HttpReply json_reply(int status, const nlohmann::json& body) { return {status, "application/json", body.dump()}; }
+HttpReply error_reply(int status, const std::string& message) { return json_reply(status, {{"error", message}}); }
+
+nlohmann::json events_json(const std::vector<Event>& events) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& e : events) out.push_back(e.to_json());
+  return out;
+}
+
+// What the server thread, the observer (sim thread) and the API share.
+class Session {
+ public:
+  Session(const runner::Scenario& scenario, std::uint64_t seed, const WebSessionOptions& options)
+      : log_(options.out / "events.jsonl"),
+        experiment_(options.out / "experiment.yaml", scenario.condition,
+                    std::chrono::duration_cast<std::chrono::seconds>(std::chrono::system_clock::now().time_since_epoch()).count(),
+                    log_),
+        scene_(scene_json(*runner::SharedModels::shipped().catalogue, scenario).dump()) {
+    for (const auto& item : runner::SharedModels::shipped().catalogue->items()) {
+      item_names_.push_back(item.name);
+      std::vector<uchar> png;
+      cv::imencode(".png", sim::item_picture(item, kItemPicturePx), png);
+      item_pictures_["/api/item/" + item.name + ".png"] = std::string(png.begin(), png.end());
+    }
+    if (scenario.condition == "child-robot") {
+      robot_ = std::make_unique<WizardRobot>(scenario, seed, log_, options.mode, options.sparc_timeout_s);
+    }
+  }
+
+  WizardRobot* robot() { return robot_.get(); }
+  SessionLog& log() { return log_; }
+  ExperimentManager& experiment() { return experiment_; }
+  bool finalised() const { return finalised_; }
+  /// The camera the page asked for since the last call ("off" to stop; nullopt: no change).
+  std::optional<std::string> take_camera_request() {
+    std::lock_guard lock(mutex_);
+    auto out = std::move(camera_request_);
+    camera_request_.reset();
+    return out;
+  }
+
+  /// Keeps the latest 3-D camera image (JPEG) for `GET /api/camera.jpg`; returns its version.
+  std::uint64_t set_camera(std::string jpeg) {
+    std::lock_guard lock(mutex_);
+    camera_ = std::move(jpeg);
+    return ++camera_version_;
+  }
+
+  /// Takes the screenshot requests made since the last call (sim thread).
+  int take_screenshot_requests() { return screenshots_requested_.exchange(0); }
+
+  // The full state a new client starts from.
+  std::string greeting() const {
+    std::lock_guard lock(mutex_);
+    return latest_full_.empty() ? std::string(kStartingFrame) : latest_full_;
+  }
+
+  void publish(nlohmann::json frame, const std::string& stage, double t, double freeplay_t) {
+    auto full = frame;
+    full["events"] = nlohmann::json::array();
+    std::lock_guard lock(mutex_);
+    if (!frame.contains("zones")) full["zones"] = zones_;
+    latest_full_ = full.dump();
+    stage_ = stage;
+    t_ = t;
+    freeplay_t_ = freeplay_t;
+  }
+
+  // Keeps the new background (JPEG) and zones for the API; returns the JPEG.
+  std::string set_background(const sim::Sandtray& tray, nlohmann::json zones) {
+    std::vector<uchar> jpeg;
+    cv::imencode(".jpg", tray.background(), jpeg, {cv::IMWRITE_JPEG_QUALITY, kBackgroundJpegQuality});
+    std::lock_guard lock(mutex_);
+    background_ = std::string(jpeg.begin(), jpeg.end());
+    zones_ = std::move(zones);
+    return background_;
+  }
+
+  HttpReply api(const HttpRequest& r) {
+    if (r.path == "/api/command") {
+      if (r.method != "POST") return error_reply(405, "/api/command takes POST with a JSON body (docs/web.md)");
+      try {
+        return command(parse_command(r.body, item_names_));
+      } catch (const CommandError& e) {
+        return error_reply(e.status(), e.what());
+      }
+    }
+    if (r.method != "GET") return error_reply(405, fmt::format("{} takes GET", r.path));
+    if (r.path == "/api/scene") return {200, "application/json", scene_};
+    if (r.path == "/api/state") return {200, "application/json", greeting()};
+    if (r.path == "/api/events") return json_reply(200, events_json(log_.all()));
+    if (const auto it = item_pictures_.find(r.path); it != item_pictures_.end()) return {200, "image/png", it->second};
+    if (r.path == "/api/camera.jpg") {
+      std::lock_guard lock(mutex_);
+      if (camera_.empty()) return error_reply(404, "no camera image yet (send {\"type\":\"camera\",\"name\":…})");
+      return {200, "image/jpeg", camera_};
+    }
+    if (r.path == "/api/background.jpg") {
+      std::lock_guard lock(mutex_);
+      if (background_.empty()) return error_reply(404, "no background published yet");
+      return {200, "image/jpeg", background_};
+    }
+    return error_reply(404, fmt::format("no such endpoint: {} (allowed: /api/scene, /api/state, /api/events, "
+                                        "/api/background.jpg, /api/item/<item>.png, /api/camera.jpg, /api/command)", r.path));
+  }
+
+ private:
+  HttpReply command(const Command& c) {
+    std::string stage;
+    double t = 0.0;
+    double freeplay_t = 0.0;
+    {
+      std::lock_guard lock(mutex_);
+      stage = stage_;
+      t = t_;
+      freeplay_t = freeplay_t_;
+    }
+    switch (c.target) {
+      case CommandTarget::Experiment:
+        experiment_.apply(c, freeplay_t, t);
+        if (c.type == "finalise") finalised_ = true;
+        if (c.type == "marker" && c.args["kind"] == "screenshot") ++screenshots_requested_;
+        return json_reply(200, {{"ok", true}, {"type", c.type}, {"experiment", experiment_.state()}});
+      case CommandTarget::Protocol: {
+        const auto topic = "sandtray/signals/" + c.args["name"].get<std::string>();
+        log_.add({t, "experimenter", "signal", {{"name", c.args["name"]}, {"topic", topic}}});
+        return json_reply(202, {{"ok", true}, {"type", c.type}, {"topic", topic}});
+      }
+      case CommandTarget::View: {
+        std::lock_guard lock(mutex_);
+        camera_request_ = c.args["name"].get<std::string>();
+        return json_reply(202, {{"ok", true}, {"type", c.type}});
+      }
+      case CommandTarget::Robot: break;
+    }
+    if (!robot_) return error_reply(409, fmt::format("'{}': a child-child session has no robot", c.type));
+    const bool setting = c.type == "mode" || c.type == "sparc_timeout";
+    if (!setting && stage != "freeplay") {
+      return error_reply(409, fmt::format("'{}': the robot acts in free play only (the stage is '{}'; the game hides "
+                                          "the sandbox and ignores /poses outside it)", c.type, stage));
+    }
+    robot_->push(c);
+    return json_reply(202, {{"ok", true}, {"type", c.type}});
+  }
+
+  SessionLog log_;
+  ExperimentManager experiment_;
+  std::string scene_;
+  std::vector<std::string> item_names_;
+  std::map<std::string, std::string> item_pictures_;  // API path → PNG
+  std::unique_ptr<WizardRobot> robot_;
+  std::atomic<bool> finalised_{false};
+  std::atomic<int> screenshots_requested_{0};
+  mutable std::mutex mutex_;
+  std::string latest_full_;
+  std::string background_;
+  std::optional<std::string> camera_request_;
+  std::string camera_;
+  std::uint64_t camera_version_ = 0;
+  nlohmann::json zones_ = nlohmann::json::array();
+  std::string stage_ = "starting";
+  double t_ = 0.0;
+  double freeplay_t_ = -1e9;
+};
+
+/// The 3-D camera view the page asked for: each rendered frame becomes the session's JPEG.
+class CameraSink final : public runner::FrameSink {
+ public:
+  explicit CameraSink(Session& session) : session_(session) {}
+  void write(const stage::FramePack& frame) override {
+    cv::Mat bgr;
+    cv::cvtColor(frame.rgb, bgr, cv::COLOR_RGB2BGR);
+    std::vector<uchar> jpeg;
+    cv::imencode(".jpg", bgr, jpeg, {cv::IMWRITE_JPEG_QUALITY, kBackgroundJpegQuality});
+    version_ = session_.set_camera(std::string(jpeg.begin(), jpeg.end()));
+    stamp_ = frame.stamp;
+  }
+  /// The latest image's version and stamp.
+  std::pair<std::uint64_t, double> latest() const { return {version_, stamp_}; }
+
+ private:
+  Session& session_;
+  std::uint64_t version_ = 0;
+  double stamp_ = 0.0;
+};
+
+/// Paces the episode to the wall clock and turns every tick into a state frame for the page.
+class WebObserver final : public runner::EpisodeObserver {
+ public:
+  WebObserver(Session& session, WebServer& server, const runner::EpisodeInfo& info, double rate,
+              std::filesystem::path out, std::size_t& ticks)
+      : session_(session), server_(server), info_(info), rate_(rate), out_(std::move(out)), ticks_(ticks),
+        camera_sink_(session) {}
+
+  void observe(const runner::EpisodeSnapshot& s) override {
+    pace(s.t);
+    const double tick_ms = unix_ms();
+    for (const auto& e : s.new_events) session_.log().add(e);
+    if (auto* robot = session_.robot()) {
+      std::map<std::string, Eigen::Vector3d> faces;
+      for (const auto& c : s.children) faces[c.seat] = c.head;
+      robot->observe(s.new_events, faces);
+    }
+    if (s.stage == "freeplay" && !freeplay_seen_) {
+      freeplay_seen_ = true;
+      session_.experiment().freeplay_started(static_cast<std::uint64_t>(tick_ms * 1e6));
+    }
+    auto frame = tick_json(s);
+    const auto stamp_ns = static_cast<std::uint64_t>(tick_ms * 1e6);
+    std::vector<FoxgloveMessage> foxglove;
+    if (server_.foxglove_clients() > 0) foxglove.push_back(foxglove_tf(*s.tray, stamp_ns));
+    if (!footprints_latched_) {
+      footprints_latched_ = true;
+      server_.latch_foxglove(foxglove_footprints(*s.tray, stamp_ns));
+    }
+    if (s.tray->background_version() != background_version_) {
+      background_version_ = s.tray->background_version();
+      auto zones = zones_json(*s.tray);
+      frame["zones"] = zones;
+      const auto jpeg = session_.set_background(*s.tray, std::move(zones));
+      for (auto m : {foxglove_zones(*s.tray, stamp_ns), foxglove_background(jpeg, stamp_ns)}) {
+        server_.latch_foxglove(m);
+        foxglove.push_back(std::move(m));
+      }
+    }
+    if (!foxglove.empty()) server_.publish_foxglove(std::move(foxglove));
+    if (session_.take_screenshot_requests() > 0) screenshot(*s.tray, s.t);
+    camera(s, frame);
+    send(std::move(frame), std::string(s.stage), s.t, s.freeplay_t, tick_ms);
+  }
+
+  // A frame without a tick (after the episode): the experiment and the events still reach the page.
+  void idle_frame(double t) {
+    send({{"type", "state"}, {"stage", "ended"}, {"t", t}}, "ended", t, -1.0, unix_ms());
+  }
+
+ private:
+  void send(nlohmann::json frame, const std::string& stage, double t, double freeplay_t, double tick_ms) {
+    frame["seq"] = ++seq_;
+    frame["tick_unix_ms"] = tick_ms;
+    frame["robot_control"] = session_.robot() != nullptr ? session_.robot()->state() : nlohmann::json();
+    frame["experiment"] = session_.experiment().state();
+    nlohmann::json events = nlohmann::json::array();
+    for (const auto& e : session_.log().take_new()) events.push_back(e.to_json());
+    frame["events"] = std::move(events);
+    auto text = std::make_shared<const std::string>(frame.dump());
+    session_.publish(std::move(frame), stage, t, freeplay_t);
+    server_.broadcast(std::move(text));
+    ++ticks_;
+  }
+
+  // The screenshot marker, as the supervisor's `sandtray/screenshot`: the game's screen as a PNG in the session
+  // folder, named as the PInSoRo sessions' screenshots (freeplay-<n>-<date>_<time>.png).
+  void screenshot(const sim::Sandtray& tray, double t) {
+    const auto name = fmt::format("freeplay-{}-{:%Y-%m-%d_%H-%M-%S}.png", ++screenshots_, fmt::gmtime(std::time(nullptr)));
+    cv::imwrite((out_ / name).string(), tray.render_screen());
+    session_.log().add({t, "experiment", "screenshot_saved", {{"file", name}}});
+  }
+
+  // The 3-D view on request: one stage camera at 1 Hz, 480 × 270, rendered on this thread while the page wants it.
+  void camera(const runner::EpisodeSnapshot& s, nlohmann::json& frame) {
+    if (auto request = session_.take_camera_request()) {
+      rig_.reset();
+      camera_name_.clear();
+      if (*request != "off") {
+        camera_scenario_ = *info_.scenario;
+        camera_scenario_.cameras = {{*request, kCameraRateHz, kCameraWidthPx, kCameraHeightPx, false, false}};
+        try {
+          rig_ = std::make_unique<runner::CameraRig>(camera_scenario_, runner::renderer_options(camera_scenario_.rendering),
+                                                     std::vector<runner::FrameSink*>{&camera_sink_});
+          rig_->begin(info_);
+          camera_name_ = *request;
+        } catch (const std::exception& e) {
+          session_.log().add({s.t, "web", "camera_failed", {{"camera", *request}, {"error", e.what()}}});
+        }
+      }
+      session_.log().add({s.t, "web", "camera", {{"camera", *request}}});
+    }
+    if (rig_) {
+      try {
+        rig_->observe(s);
+      } catch (const std::exception& e) {
+        session_.log().add({s.t, "web", "camera_failed", {{"camera", camera_name_}, {"error", e.what()}}});
+        rig_.reset();
+        camera_name_.clear();
+      }
+    }
+    const auto [version, stamp] = camera_sink_.latest();
+    frame["camera"] = camera_name_.empty() ? nlohmann::json() : nlohmann::json{{"name", camera_name_}, {"version", version}, {"stamp", stamp}};
+  }
+
+  void pace(double t) {
+    if (!start_) {
+      start_ = Clock::now();
+      t0_ = t;
+    }
+    std::this_thread::sleep_until(*start_ + std::chrono::duration_cast<Clock::duration>(
+                                                std::chrono::duration<double>((t - t0_) / rate_)));
+  }
+
+  Session& session_;
+  WebServer& server_;
+  runner::EpisodeInfo info_;
+  double rate_;
+  std::filesystem::path out_;
+  std::size_t& ticks_;
+  int screenshots_ = 0;
+  CameraSink camera_sink_;
+  runner::Scenario camera_scenario_;
+  std::unique_ptr<runner::CameraRig> rig_;
+  std::string camera_name_;
+  std::optional<Clock::time_point> start_;
+  double t0_ = 0.0;
+  std::uint64_t background_version_ = ~std::uint64_t{0};
+  bool freeplay_seen_ = false;
+  bool footprints_latched_ = false;
+  std::uint64_t seq_ = 0;
+};
+
+/// The episode owns its observers; the session's observer outlives it (for the frames after the episode).
+class ObserverRef final : public runner::EpisodeObserver {
+ public:
+  explicit ObserverRef(WebObserver& observer) : observer_(observer) {}
+  void observe(const runner::EpisodeSnapshot& snapshot) override { observer_.observe(snapshot); }
+
+ private:
+  WebObserver& observer_;
+};
+
+}  // namespace
+
+WebSessionReport serve_web(const runner::Scenario& scenario, std::uint64_t seed, const WebSessionOptions& options,
+                           const std::atomic<bool>& stop) {
+  // The server binds first, so a bad address or a port in use leaves no session folder behind; it is declared after
+  // the session so that it stops (joining its thread) before the session goes.
+  std::optional<Session> session;
+  std::atomic<Session*> ready{nullptr};
+  WebServer server(
+      options.server,
+      [&ready](const HttpRequest& r) {
+        auto* s = ready.load();
+        return s != nullptr ? s->api(r) : error_reply(503, "the session is starting");
+      },
+      [&ready] {
+        auto* s = ready.load();
+        return s != nullptr ? s->greeting() : std::string(kStartingFrame);
+      });
+  std::filesystem::create_directories(options.out);
+  ready = &session.emplace(scenario, seed, options);
+  if (options.on_listening) options.on_listening(server.url());
+  if (options.on_commands) {
+    options.on_commands([&session](const std::string& body) { return session->api({"POST", "/api/command", {}, body}); });
+  }
+  struct Detach {  // the other sources lose the session before it goes, however serve_web leaves
+    const WebSessionOptions& options;
+    ~Detach() {
+      if (options.on_commands) options.on_commands({});
+    }
+  } detach{options};
+  WebSessionReport report;
+  const runner::EpisodeInfo info{&scenario, "web", seed};
+  WebObserver observer(*session, server, info, options.rate, options.out, report.ticks);
+  runner::EpisodeObservers observers;
+  observers.push_back(std::make_unique<ObserverRef>(observer));
+  report.result = runner::run_episode(scenario, seed, runner::SharedModels::shipped(), stop, observers, info, nullptr,
+                                      session->robot());
+  if (!report.result.aborted) {
+    std::ofstream(options.out / "episode.json") << report.result.record.dump(2) << '\n';
+    while (options.linger && !session->finalised() && !stop.load()) {
+      observer.idle_frame(report.result.simulated_s);
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    }
+    observer.idle_frame(report.result.simulated_s);
+  }
+  report.server = server.stats();
+  return report;
+}
+
+}  // namespace freeplay::web
