@@ -91,6 +91,8 @@ class RobotSide {
   std::string policy_name() const { return policy_->name(); }
   /// True while a move streams poses.
   bool moving() const { return executor_->status() == planning::MoveStatus::Running; }
+  /// The item of the current (or last) move.
+  const std::string& current_item() const { return move_.item; }
   /// True while an utterance started at or before `t` lasts.
   bool speaking(double t) const { return t < speaking_until_; }
   /// The moves' counters and measurements so far.
