@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <set>
 #include <stdexcept>
 #include <thread>
 
@@ -82,9 +83,6 @@ class LivePublisher final : public runner::EpisodeObserver {
       g.take_look_at();  // the external robot acts in free play only
       g.take_point_at();
     }
-    for (const auto& name : g.take_signals()) {
-      spdlog::info("received sandtray/signals/{} (the served protocol drives the game's stages; not applied)", name);
-    }
   }
 
   /// Answers `plan_motion` through `robot` at every tick (`--robot external`).
@@ -124,10 +122,14 @@ class LivePublisher final : public runner::EpisodeObserver {
     auto& g = *live_.graph;
     if (e.type == "interaction_event") g.interaction_event(e.data.value("message", ""));
     if (e.type == "say" && e.source == "robot") g.speech(e.data.value("text", ""));
+    if (e.source == "protocol" && e.type == "signal_received") received_.insert(e.data.value("name", ""));
     if (e.source == "protocol" && e.type == "stage") {
       static const std::map<std::string, std::string> kSignals = {
           {"tutorial", "start_tutorial"}, {"freeplay", "start_freeplay"}, {"debriefing", "blank_interface"}};
-      if (const auto it = kSignals.find(e.data.value("stage", "")); it != kSignals.end()) g.signal(it->second);
+      if (const auto it = kSignals.find(e.data.value("stage", "")); it != kSignals.end()) {
+        // A stage another node signalled is not signalled again (the game never echoes a signal).
+        if (received_.erase(it->second) == 0) g.signal(it->second);
+      }
     }
   }
 
@@ -144,6 +146,29 @@ class LivePublisher final : public runner::EpisodeObserver {
   long tick_ = 0;
   std::vector<std::array<double, 2>> trajectory_;
   std::vector<double> lateness_ms_;
+  std::set<std::string> received_;  // stage signals received from the graph, not to be echoed
+};
+
+/// `sandtray/signals/*` from other nodes, for the episode to apply (the game's own signals: see sim::Signal).
+class GraphSignals final : public runner::SignalSource {
+ public:
+  explicit GraphSignals(ros_graph::SandtrayGraph& graph) : graph_(graph) {}
+
+  std::vector<sim::Signal> take() override {
+    std::vector<sim::Signal> out;
+    for (const auto& name : graph_.take_signals()) {
+      if (const auto signal = sim::signal_from_name(name)) {
+        spdlog::info("received sandtray/signals/{}: applied", name);
+        out.push_back(*signal);
+      } else {
+        spdlog::info("received sandtray/signals/{}: not simulated by the game", name);
+      }
+    }
+    return out;
+  }
+
+ private:
+  ros_graph::SandtrayGraph& graph_;
 };
 
 /// `--robot external`: the finger follows `/poses` from the graph, and the `move_sandbox_items` action and
@@ -290,8 +315,9 @@ runner::EpisodeResult serve(const runner::Scenario& scenario, std::uint64_t seed
   runner::EpisodeObservers observers;
   observers.push_back(std::make_unique<PublisherRef>(publisher));
   const runner::EpisodeInfo info{&scenario, "serve", seed};
+  GraphSignals signals(graph);
   auto result = runner::run_episode(scenario, seed, runner::SharedModels::shipped(), stop, observers, info, nullptr,
-                                    robot.get());
+                                    robot.get(), &signals);
   if (timing != nullptr) *timing = publisher.timing();
   return result;
 }

@@ -39,8 +39,9 @@ class Episode {
 
   EpisodeResult run(const std::atomic<bool>& stop, EpisodeObservers* observers = nullptr,
                     const EpisodeInfo* info = nullptr, ChildActionSource* child_source = nullptr,
-                    RobotActionSource* robot_source = nullptr) {
+                    RobotActionSource* robot_source = nullptr, SignalSource* signals = nullptr) {
     EpisodeResult result;
+    signals_ = signals;
     world_.set_child_source(child_source);
     robot_source_ = robot_source;
     observers_ = observers != nullptr && !observers->empty() ? observers : nullptr;
@@ -53,10 +54,12 @@ class Episode {
     stage_event("greeting");
     if (world_.child_robot()) world_.greet(kRobotHello);
     if (!idle_stage(scenario_.protocol.greeting_s, stop)) return aborted(result);
-    // Tutorial: tutorial background, only the boy and the girl.
-    tray.signal(sim::Signal::StartTutorial);
-    stage_event("tutorial");
-    if (!idle_stage(scenario_.protocol.tutorial_s, stop)) return aborted(result);
+    // Tutorial: tutorial background, only the boy and the girl (skipped when free play was signalled already).
+    if (jump_to_ <= kTutorial) {
+      tray.signal(sim::Signal::StartTutorial);
+      stage_event("tutorial");
+      if (!idle_stage(scenario_.protocol.tutorial_s, stop)) return aborted(result);
+    }
     // Free play.
     tray.signal(sim::Signal::StartFreeplay);
     world_.start_freeplay();
@@ -70,6 +73,11 @@ class Episode {
       t = static_cast<double>(tick) * kTickS;
       if (t >= cap) break;
       if (((tick & 63) == 0 || observers_ != nullptr) && stop.load(std::memory_order_relaxed)) return aborted(result);
+      poll_signals();
+      if (jump_to_ > kFreeplay) {
+        ended_by = "signal";
+        break;
+      }
       world_.step_children(t);
       if (world_.child_robot()) step_robot(t);
       world_.code_players(t);
@@ -127,6 +135,36 @@ class Episode {
     world_.rest_when_idle(t);
   }
 
+  static constexpr int kTutorial = 1;    // stage indices: greeting 0, tutorial 1, free play 2, debriefing 3
+  static constexpr int kFreeplay = 2;
+  static constexpr int kDebriefing = 3;
+
+  int stage_index() const {
+    if (stage_ == "greeting") return 0;
+    if (stage_ == "tutorial") return kTutorial;
+    return stage_ == "freeplay" ? kFreeplay : kDebriefing;
+  }
+
+  // Applies the signals received since the last tick: a stage signal that starts a later stage ends the current
+  // one (and any between); every other signal goes to the game.
+  void poll_signals() {
+    if (signals_ == nullptr) return;
+    for (const auto s : signals_->take()) {
+      const int current = stage_index();
+      const int target = s == sim::Signal::StartTutorial                              ? kTutorial
+                         : s == sim::Signal::StartFreeplay                            ? kFreeplay
+                         : s == sim::Signal::BlankInterface && current == kFreeplay ? kDebriefing
+                                                                                      : -1;
+      world_.log().emit({world_.now(), "protocol", "signal_received",
+                         {{"name", std::string(sim::signal_name(s))}, {"stage", stage_}}});
+      if (target > current) {
+        jump_to_ = std::max(jump_to_, target);
+      } else {
+        world_.tray().signal(s);
+      }
+    }
+  }
+
   void stage_event(const std::string& name) {
     stage_ = name;
     world_.log().emit({world_.now(), "protocol", "stage", {{"stage", name}}});
@@ -140,11 +178,12 @@ class Episode {
     return result;
   }
 
-  // A stage without children's play (greetings, tutorial, debriefing): one step without observers; with them,
-  // 10 Hz ticks (the sandtray clock is integral, so both give the same state). False when stopped.
+  // A stage without children's play (greetings, tutorial, debriefing): one step without observers or signals;
+  // with them, 10 Hz ticks (the sandtray clock is integral, so both give the same state); a signalled later stage
+  // ends it early. False when stopped.
   bool idle_stage(double seconds, const std::atomic<bool>& stop) {
     auto& tray = world_.tray();
-    if (observers_ == nullptr) {
+    if (observers_ == nullptr && signals_ == nullptr) {
       tray.step(seconds);
       world_.drain_tray_events();
       return true;
@@ -152,14 +191,16 @@ class Episode {
     const double end = tray.time() + seconds;
     while (tray.time() + kTickS <= end + 1e-9) {
       if (stop.load(std::memory_order_relaxed)) return false;
+      poll_signals();
+      if (jump_to_ > stage_index()) return true;
       tray.step(kTickS);
       world_.drain_tray_events();
-      notify();
+      if (observers_ != nullptr) notify();
     }
     if (end - tray.time() > 1e-9) {
       tray.step(end - tray.time());
       world_.drain_tray_events();
-      notify();
+      if (observers_ != nullptr) notify();
     }
     return true;
   }
@@ -180,6 +221,8 @@ class Episode {
   std::optional<RobotSide> robot_;
   RobotActionSource* robot_source_ = nullptr;  // replaces the robot's policy and executor when set
   EpisodeObservers* observers_ = nullptr;
+  SignalSource* signals_ = nullptr;  // signals from outside (a live graph), polled every tick
+  int jump_to_ = 0;                  // the latest stage a received signal started
   std::string stage_ = "greeting";
   std::size_t notified_events_ = 0;
 };
@@ -194,9 +237,9 @@ EpisodeResult run_episode(const Scenario& scenario, std::uint64_t seed, const Sh
 
 EpisodeResult run_episode(const Scenario& scenario, std::uint64_t seed, const SharedModels& models,
                           const std::atomic<bool>& stop, EpisodeObservers& observers, const EpisodeInfo& info,
-                          ChildActionSource* children, RobotActionSource* robot) {
+                          ChildActionSource* children, RobotActionSource* robot, SignalSource* signals) {
   Episode episode(scenario, seed, models);
-  return episode.run(stop, &observers, &info, children, robot);
+  return episode.run(stop, &observers, &info, children, robot, signals);
 }
 
 EpisodeFunction episode_function(const SharedModels& models, ObserverFactory observers, std::filesystem::path run_dir) {

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Live ROS 1 graph checks of `freeplay serve` and `freeplay robot` against a real rosmaster.
 
-Usage: live_graph_test.py FREEPLAY SCENARIO CASE   (CASE: topics | client | robot | rate | errors)
+Usage: live_graph_test.py FREEPLAY SCENARIO CASE   (CASE: topics | client | robot | rate | signals | errors)
 
 Each case starts its own rosmaster on a free loopback port, the freeplay processes it needs, and a rospy client of
 ours (independent of the C++ code, with the freeplay_sandbox_msgs Python classes genpy generated at build time);
@@ -307,6 +307,63 @@ def case_robot(g):
     check(not summary["aborted"] and metrics["robot_item_moves_per_min"] > 0, "the episode counted the robot's moves")
 
 
+def wait_connected(publisher, what, timeout=10.0):
+    deadline = time.monotonic() + timeout
+    while publisher.get_num_connections() == 0:
+        check(time.monotonic() < deadline, f"nobody subscribed our {what} within {timeout} s")
+        time.sleep(0.1)
+
+
+def case_signals(g):
+    """Incoming sandtray/signals/* drive the served protocol (start_freeplay ends a 600 s greeting at once,
+    items_to_stash moves the items, blank_interface ends free play) and are not echoed; a malformed gaze target is
+    logged and dropped, never applied."""
+    serve = g.serve("--set", "protocol.greeting_s=600", "--set", "protocol.freeplay_cap_s=600")
+    rospy = rospy_client()
+    from std_msgs.msg import Empty
+    from geometry_msgs.msg import PointStamped
+    echoes = []
+    me = rospy.get_name()
+    rospy.Subscriber("sandtray/signals/start_freeplay", Empty,
+                     lambda m: echoes.append(m._connection_header["callerid"]))
+    before = item_positions(rospy, timeout=30)
+    publishers = {name: rospy.Publisher("sandtray/signals/" + name, Empty, queue_size=1, latch=False)
+                  for name in ["start_freeplay", "items_to_stash", "blank_interface"]}
+    for name, publisher in publishers.items():
+        wait_connected(publisher, "sandtray/signals/" + name)
+    time.sleep(0.5)
+    publishers["start_freeplay"].publish(Empty())
+    time.sleep(1.5)
+    look = rospy.Publisher("freeplay/robot/look_at", PointStamped, queue_size=1)
+    wait_connected(look, "freeplay/robot/look_at")
+    bad = PointStamped()
+    bad.header.frame_id = "odom"  # not the sandtray frame
+    bad.point.x = 0.3
+    look.publish(bad)
+    publishers["items_to_stash"].publish(Empty())
+    time.sleep(1.5)
+    after = item_positions(rospy)
+    moved = [i for i in ITEMS if math.dist(before[i][:2], after[i][:2]) > 0.02]
+    print("items moved by items_to_stash:", moved)
+    check(len(moved) >= 5, f"items_to_stash moved the items on /tf (moved: {moved})")
+    publishers["blank_interface"].publish(Empty())
+    try:
+        serve.wait(timeout=30)
+    except subprocess.TimeoutExpired:
+        raise AssertionError("blank_interface did not end free play")
+    check(serve.returncode == 0, f"freeplay serve failed:\n{g.log('serve')}")
+    import json
+    summary = json.loads([line for line in g.log("serve").splitlines() if line.startswith("{")][-1])
+    print("serve summary:", {k: summary[k] for k in ["ended_by", "duration_s", "simulated_s"]})
+    check(summary["ended_by"] == "signal", f"free play ended by the signal: {summary['ended_by']}")
+    check(summary["simulated_s"] < 60, f"start_freeplay cut the 600 s greeting short: {summary['simulated_s']} s")
+    others = [c for c in echoes if c != me]
+    check(not others, f"serve echoed start_freeplay (from {others})")
+    log = g.log("serve")
+    check("received sandtray/signals/start_freeplay: applied" in log, "serve logs the applied signal")
+    check("look_at: dropped a malformed target (frame 'odom'" in log, "serve logs and drops the malformed target")
+
+
 def case_errors():
     """Bad input exits 2 with the allowed values; no master exits 1 with a clear message (no master started)."""
     env = dict(os.environ, ROS_MASTER_URI="http://127.0.0.1:1")
@@ -326,7 +383,8 @@ def main():
         case_errors()
         print("errors: ok")
         return
-    cases = {"topics": case_topics, "client": case_client, "robot": case_robot, "rate": case_rate}
+    cases = {"topics": case_topics, "client": case_client, "robot": case_robot, "rate": case_rate,
+             "signals": case_signals}
     with Graph() as g:
         try:
             cases[CASE](g)
