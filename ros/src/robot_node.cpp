@@ -151,6 +151,7 @@ class RobotNode {
       const double t = static_cast<double>(tick) * kTickS;
       if (stop.load() || !graph.ok() || (options_.duration_s > 0 && t >= options_.duration_s)) break;
       std::this_thread::sleep_until(start + std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>(t)));
+      graph.maintain();
       const auto view = graph.take();
       actuators.update(world_of(view, catalogue_, ros_graph::wall_now()));
       if (actuators.world().items.empty()) continue;  // nothing to decide on before the game's TF arrives

@@ -45,6 +45,7 @@ class LivePublisher final : public runner::EpisodeObserver {
   void observe(const runner::EpisodeSnapshot& s) override {
     const auto due = pace(s.t);
     auto& g = *live_.graph;
+    g.maintain();
     const double stamp = live_.stamp(s.t);
     g.clock(stamp);
     auto frames = game_frames(*s.tray);

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Live ROS 1 graph checks of `freeplay serve` and `freeplay robot` against a real rosmaster.
 
-Usage: live_graph_test.py FREEPLAY SCENARIO CASE   (CASE: topics | client | robot | rate | signals | errors)
+Usage: live_graph_test.py FREEPLAY SCENARIO CASE   (CASE: topics | client | robot | rate | signals | restart | errors)
 
 Each case starts its own rosmaster on a free loopback port, the freeplay processes it needs, and a rospy client of
 ours (independent of the C++ code, with the freeplay_sandbox_msgs Python classes genpy generated at build time);
@@ -364,6 +364,76 @@ def case_signals(g):
     check("look_at: dropped a malformed target (frame 'odom'" in log, "serve logs and drops the malformed target")
 
 
+def registrations(g):
+    """(publishers, subscribers, services) of the master as {name: [nodes]}."""
+    state = xmlrpc.client.ServerProxy(g.uri).getSystemState("/freeplay_test")[2]
+    return [dict((name, set(nodes)) for name, nodes in part) for part in state]
+
+
+def wait_master(g, timeout=15.0):
+    deadline = time.monotonic() + timeout
+    while True:
+        try:
+            return registrations(g)
+        except OSError:
+            check(time.monotonic() < deadline, f"the restarted master did not answer on {g.uri}")
+            time.sleep(0.2)
+
+
+def case_restart(g):
+    """A master that restarts and nodes that die crash neither side: serve and robot run on while the master is
+    away, register again when it is back (the robot moves items through the new master), and each survives the
+    other's death."""
+    serve = g.serve("--robot", "external", "--set", "protocol.freeplay_cap_s=600")
+    robot = g.spawn("robot", [FREEPLAY, "robot", "--policy", "asocial", "--seed", "3"])
+
+    def registered(state):
+        pubs, subs, services = state
+        return ("/sandtray" in pubs.get("/tf", ()) and "/freeplay_robot" in subs.get("/tf", ())
+                and "/freeplay_robot" in pubs.get("/poses", ()) and "/sandtray" in subs.get("/poses", ())
+                and "/sandtray" in services.get("/plan_motion", ()))
+    deadline = time.monotonic() + 30
+    while not registered(registrations(g)):
+        check(time.monotonic() < deadline, f"serve and robot did not register: {registrations(g)}")
+        time.sleep(0.3)
+    time.sleep(3)
+    master = g.procs[0][1]
+    os.killpg(master.pid, signal.SIGKILL)  # the master dies
+    master.wait(timeout=5)
+    time.sleep(3)
+    check(serve.poll() is None and robot.poll() is None, "serve and robot run on without the master")
+    g.spawn("rosmaster_again", ["/usr/bin/rosmaster", "--core", "-p", str(g.port)])
+    wait_master(g)
+    deadline = time.monotonic() + 15
+    while not registered(registrations(g)):
+        check(time.monotonic() < deadline, f"serve and robot did not register again: {registrations(g)}")
+        time.sleep(0.3)
+    print("registered again with the restarted master")
+    rospy = rospy_client()  # registers with the new master
+    from std_msgs.msg import String
+    releases = []
+    rospy.Subscriber("sandtray/interaction_events", String, lambda m: releases.append(m.data))
+    deadline = time.monotonic() + 60
+    while not any(r.startswith("releasing_") for r in releases):
+        check(time.monotonic() < deadline, f"no item released by the robot after the restart (events {releases})")
+        check(serve.poll() is None and robot.poll() is None, "serve and robot still run")
+        time.sleep(0.2)
+    print("after the restart, the game released:", [r for r in releases if r.startswith("releasing_")])
+    os.killpg(robot.pid, signal.SIGKILL)  # the robot node dies
+    robot.wait(timeout=5)
+    time.sleep(2)
+    check(serve.poll() is None, "serve runs on after the robot node died")
+    item_positions(rospy)
+    robot = g.spawn("robot_again", [FREEPLAY, "robot", "--policy", "asocial", "--seed", "4"])
+    time.sleep(3)
+    os.killpg(serve.pid, signal.SIGKILL)  # the sandtray dies
+    serve.wait(timeout=5)
+    time.sleep(2)
+    check(robot.poll() is None, "robot runs on after the sandtray died")
+    for line in ["lost the ROS master", "is back: registering again"]:
+        check(line in g.log("serve") and line in g.log("robot"), f"serve and robot log '{line}'")
+
+
 def case_errors():
     """Bad input exits 2 with the allowed values; no master exits 1 with a clear message (no master started)."""
     env = dict(os.environ, ROS_MASTER_URI="http://127.0.0.1:1")
@@ -384,7 +454,7 @@ def main():
         print("errors: ok")
         return
     cases = {"topics": case_topics, "client": case_client, "robot": case_robot, "rate": case_rate,
-             "signals": case_signals}
+             "signals": case_signals, "restart": case_restart}
     with Graph() as g:
         try:
             cases[CASE](g)

@@ -108,6 +108,9 @@ class SandtrayGraph {
 
   /// False once ROS shut down (master gone for good, Ctrl-C through ROS).
   bool ok() const;
+  /// Call once per tick: after the master came back from a restart, registers every topic and server anew and
+  /// publishes the latched topics again (goals accepted before are aborted).
+  void maintain();
   /// Publishes `/clock` (only with publish_clock).
   void clock(double stamp);
   /// Publishes one `/tf` message with `transforms`.
@@ -180,6 +183,8 @@ class RobotGraph {
 
   /// False once ROS shut down.
   bool ok() const;
+  /// Call once per tick: after the master came back from a restart, subscribes and advertises anew.
+  void maintain();
   /// A copy of what is known now (events are handed out once).
   RobotView take();
   /// Publishes one `/poses` fake touch (frame `/sandtray`).
