@@ -34,6 +34,7 @@
 #include "message_builders.hpp"
 #include "freeplay/sim/sandtray.hpp"
 #include "freeplay/sim/screen.hpp"
+#include "freeplay/sim/markers.hpp"
 #include "freeplay/sim/zones.hpp"
 
 namespace freeplay::recording {
@@ -48,7 +49,6 @@ namespace {
 using detail::kCameraLinks;
 using detail::point;
 using detail::pose_of;
-using detail::rpy_quaternion;
 using detail::StaticLink;
 using detail::transform;
 using detail::yaw_quaternion;
@@ -272,7 +272,7 @@ struct BagRecorder::Impl {
       put_tf("game/" + name, t, {{name, pose_of({touch.position.x(), touch.position.y(), 0.0}, Eigen::Quaterniond::Identity())}});
     }
     std::vector<std::pair<std::string, Eigen::Isometry3d>> links;  // sandtray_publisher: the URDF camera links
-    for (const auto& link : kCameraLinks) links.emplace_back(link.frame, pose_of(link.xyz, rpy_quaternion(link.rpy)));
+    for (const auto& link : kCameraLinks) links.emplace_back(link.frame, pose_of(link.xyz, link.rotation()));
     put_tf("sandtray_publisher", t, links);
     for (const auto& child : s.children) {  // the head trackers
       const Eigen::Vector3d direction = child.gaze_point - child.head;
@@ -303,46 +303,34 @@ struct BagRecorder::Impl {
     clear.header.frame_id = ros_string("/sandtray");
     clear.action = msg::Marker::DELETEALL;
     zones.markers.push_back(clear);
-    for (const auto& zone : tray.zones().zones()) {
-      msg::Marker m;
-      m.header = clear.header;
-      m.ns = ros_string("sandbox_zone_" + zone.colour);
-      m.id = zone.id;
-      m.type = msg::Marker::LINE_STRIP;
-      m.action = msg::Marker::ADD;
-      m.pose.orientation.w = 1.0;
-      m.scale.x = 0.005;
-      const auto rgb = sim::zone_marker_rgb(zone.colour);
-      m.color.r = static_cast<float>(rgb[0]) / 255.0F;
-      m.color.g = static_cast<float>(rgb[1]) / 255.0F;
-      m.color.b = static_cast<float>(rgb[2]) / 255.0F;
-      m.color.a = 1.0F;
-      for (const auto& v : zone.polygon) m.points.push_back(point(v.x(), v.y()));
-      if (!zone.polygon.empty()) m.points.push_back(point(zone.polygon.front().x(), zone.polygon.front().y()));
-      zones.markers.push_back(std::move(m));
-    }
+    for (const auto& zone : sim::zone_markers(tray)) zones.markers.push_back(line_marker(zone, clear.header.stamp));
     put(topics::kZones, zones_published, zones, true);
+  }
+
+  // A visualization_msgs/Marker LINE_STRIP of one of the game's line markers.
+  static msg::Marker line_marker(const sim::LineMarker& line, const ros::Time& stamp) {
+    msg::Marker m;
+    m.header.stamp = stamp;
+    m.header.frame_id = ros_string(line.frame);
+    m.ns = ros_string(line.ns);
+    m.id = line.id;
+    m.type = msg::Marker::LINE_STRIP;
+    m.action = msg::Marker::ADD;
+    m.pose.orientation.w = 1.0;
+    m.scale.x = line.width;
+    m.color.r = line.rgb[0];
+    m.color.g = line.rgb[1];
+    m.color.b = line.rgb[2];
+    m.color.a = 1.0F;
+    for (const auto& v : line.points) m.points.push_back(point(v[0], v[1]));
+    return m;
   }
 
   void write_footprints(double t, const sim::Sandtray& tray) {
     msg::MarkerArray footprints;  // FootprintsPublisher: one closed polygon per item, in the item's frame
     const double published = clocks.publish("footprints", t);
-    int marker_id = 0;
-    for (const auto& [name, polygon] : tray.published_footprints()) {
-      msg::Marker m;
-      m.header.stamp = ros_time(published);
-      m.header.frame_id = ros_string("/" + name);
-      m.ns = ros_string(name);
-      m.id = marker_id++;
-      m.type = msg::Marker::LINE_STRIP;
-      m.action = msg::Marker::ADD;
-      m.pose.orientation.w = 1.0;
-      m.scale.x = 0.002;
-      m.color.g = 1.0F;
-      m.color.a = 1.0F;
-      for (const auto& v : polygon) m.points.push_back(point(v.x(), v.y()));
-      if (!polygon.empty()) m.points.push_back(point(polygon.front().x(), polygon.front().y()));
-      footprints.markers.push_back(std::move(m));
+    for (const auto& item : sim::footprint_markers(tray)) {
+      footprints.markers.push_back(line_marker(item, ros_time(published)));
     }
     put(topics::kFootprints, published, footprints, true);
   }
