@@ -14,7 +14,9 @@
 #include "freeplay/core/rng.hpp"
 #include "freeplay/planning/move_executor.hpp"
 #include "freeplay/planning/plan.hpp"
+#include "freeplay/recording/camera_topics.hpp"
 #include "freeplay/ros/graph.hpp"
+#include "freeplay/runner/camera_rig.hpp"
 #include "freeplay/runner/sandtray_world.hpp"
 #include "freeplay/runner/scenario.hpp"
 #include "freeplay/sim/screen.hpp"
@@ -54,19 +56,7 @@ class LivePublisher final : public runner::EpisodeObserver {
     if (reach_) frames.push_back(arm_reach_frame(*reach_));
     g.tf(stamp, frames);
     lateness_ms_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - due).count());
-    if (!footprints_sent_) {
-      g.footprints(stamp, footprint_markers(*s.tray));
-      footprints_sent_ = true;
-    }
-    if (s.tray->background_version() != background_version_ && s.t - background_t_ >= kBackgroundPeriodS - 1e-9) {
-      background_version_ = s.tray->background_version();
-      background_t_ = s.t;
-      g.background(stamp, background_image(*s.tray));
-      g.zones(stamp, zone_markers(*s.tray));
-    }
-    if (tick_++ % kMapEveryTicks == 0) g.map(stamp, occupancy_map(*s.tray));
-    for (const auto& e : s.new_events) publish_event(e);
-    if (robot_ != nullptr) serve_plans(*robot_, *s.tray);
+    // The periodic topics first, the expensive latched ones (background PNG, zones) after them.
     if (s.robot != nullptr) {
       g.joint_states(stamp, {s.robot->joint_names, s.robot->positions, s.robot->velocities, s.robot->efforts});
       if (sim_robot_ && s.robot->finger) {  // our in-process move_sandbox_items streaming /poses
@@ -77,6 +67,19 @@ class LivePublisher final : public runner::EpisodeObserver {
         trajectory_.clear();
       }
     }
+    if (tick_++ % kMapEveryTicks == 0) g.map(stamp, occupancy_map(*s.tray));
+    for (const auto& e : s.new_events) publish_event(e);
+    if (!footprints_sent_) {
+      g.footprints(stamp, footprint_markers(*s.tray));
+      footprints_sent_ = true;
+    }
+    if (s.tray->background_version() != background_version_ && s.t - background_t_ >= kBackgroundPeriodS - 1e-9) {
+      background_version_ = s.tray->background_version();
+      background_t_ = s.t;
+      g.background(stamp, background_image(*s.tray));
+      g.zones(stamp, zone_markers(*s.tray));
+    }
+    if (robot_ != nullptr) serve_plans(*robot_, *s.tray);
     if (s.stage != "freeplay") {
       for (const auto& p : g.take_poses()) {  // as the game: poses are ignored while the sandbox is hidden
         spdlog::debug("/poses from {} ignored outside free play", p.publisher);
@@ -151,6 +154,32 @@ class LivePublisher final : public runner::EpisodeObserver {
 };
 
 /// `sandtray/signals/*` from other nodes, for the episode to apply (the game's own signals: see sim::Signal).
+/// The scenario's cameras rendered by the runner's CameraRig, published live under their drivers' topics (colour
+/// only; depth stays in recordings).
+class LiveCameras final : public runner::FrameSink {
+ public:
+  LiveCameras(Live& live, int jpeg_quality) : live_(live), jpeg_quality_(jpeg_quality) {}
+
+  void write(const stage::FramePack& frame) override {
+    if (frame.rgb.empty()) return;
+    const auto topics = recording::camera_topics(frame.camera);
+    ros_graph::CameraFrame out;
+    out.image_topic = topics.rgb_image;
+    out.info_topic = topics.rgb_info;
+    out.frame_id = topics.rgb_frame;
+    out.format = topics.rgb_format;
+    out.jpeg = recording::encode_jpeg(frame.rgb, jpeg_quality_);
+    out.width = frame.rgb.cols;
+    out.height = frame.rgb.rows;
+    out.K = {frame.K.fx, frame.K.fy, frame.K.cx, frame.K.cy};
+    live_.graph->camera(live_.stamp(frame.stamp), out);
+  }
+
+ private:
+  Live& live_;
+  int jpeg_quality_;
+};
+
 class GraphSignals final : public runner::SignalSource {
  public:
   explicit GraphSignals(ros_graph::SandtrayGraph& graph) : graph_(graph) {}
@@ -315,6 +344,11 @@ runner::EpisodeResult serve(const runner::Scenario& scenario, std::uint64_t seed
   }
   runner::EpisodeObservers observers;
   observers.push_back(std::make_unique<PublisherRef>(publisher));
+  LiveCameras cameras(live, scenario.recording.jpeg_quality);
+  if (!scenario.cameras.empty()) {  // rendered after the tick's topics went out, at each camera's own rate
+    observers.push_back(std::make_unique<runner::CameraRig>(
+        scenario, runner::renderer_options(scenario.rendering), std::vector<runner::FrameSink*>{&cameras}));
+  }
   const runner::EpisodeInfo info{&scenario, "serve", seed};
   GraphSignals signals(graph);
   auto result = runner::run_episode(scenario, seed, runner::SharedModels::shipped(), stop, observers, info, nullptr,

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Live ROS 1 graph checks of `freeplay serve` and `freeplay robot` against a real rosmaster.
 
-Usage: live_graph_test.py FREEPLAY SCENARIO CASE   (CASE: topics | client | robot | rate | signals | restart | errors)
+Usage: live_graph_test.py FREEPLAY SCENARIO CASE   (CASE: topics | client | robot | rate | signals | restart | cameras | errors)
 
 Each case starts its own rosmaster on a free loopback port, the freeplay processes it needs, and a rospy client of
 ours (independent of the C++ code, with the freeplay_sandbox_msgs Python classes genpy generated at build time);
@@ -364,6 +364,25 @@ def case_signals(g):
     check("look_at: dropped a malformed target (frame 'odom'" in log, "serve logs and drops the malformed target")
 
 
+def case_cameras(g):
+    """The scenario's cameras are rendered and published live under their drivers' topics: the Nao's head camera
+    (naoqi_driver front) and an SR300 (camera_purple), JPEG with their CameraInfo."""
+    cameras = ("cameras=[{name: CameraTop, rate_hz: 5, width: 160, height: 120}, "
+               "{name: camera_purple, rate_hz: 2, width: 192, height: 108}]")
+    g.serve("--set", cameras)
+    rospy = rospy_client()
+    from sensor_msgs.msg import CameraInfo, CompressedImage
+    for image_topic, info_topic, size in [
+            ("/naoqi_driver/camera/front/image_raw/compressed", "/naoqi_driver/camera/front/camera_info", (160, 120)),
+            ("/camera_purple/rgb/image_raw/compressed", "/camera_purple/rgb/camera_info", (192, 108))]:
+        image = rospy.wait_for_message(image_topic, CompressedImage, timeout=60)
+        info = rospy.wait_for_message(info_topic, CameraInfo, timeout=10)
+        check(image.format.endswith("jpeg compressed bgr8") and bytes(image.data[:2]) == b"\xff\xd8",
+              f"{image_topic}: a JPEG ({image.format})")
+        check((info.width, info.height) == size and info.K[0] > 0, f"{info_topic}: {info.width}x{info.height}")
+        print(f"{image_topic}: {len(image.data)} bytes, frame {image.header.frame_id}, K[0] {info.K[0]:.1f}")
+
+
 def registrations(g):
     """(publishers, subscribers, services) of the master as {name: [nodes]}."""
     state = xmlrpc.client.ServerProxy(g.uri).getSystemState("/freeplay_test")[2]
@@ -454,7 +473,7 @@ def main():
         print("errors: ok")
         return
     cases = {"topics": case_topics, "client": case_client, "robot": case_robot, "rate": case_rate,
-             "signals": case_signals, "restart": case_restart}
+             "signals": case_signals, "restart": case_restart, "cameras": case_cameras}
     with Graph() as g:
         try:
             cases[CASE](g)

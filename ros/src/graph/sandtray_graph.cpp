@@ -92,6 +92,7 @@ struct SandtrayGraph::Impl {
   ros::Publisher clock, tf, footprints, zones, image, compressed, camera_info, map, events, speech, joints, poses,
       markers;
   std::map<std::string, ros::Publisher> signal_out;
+  std::map<std::string, ros::Publisher> cameras;  // by topic, advertised at the first frame
   std::vector<ros::Subscriber> subscribers;
   std::unique_ptr<NavigationServer> server;
   ros::ServiceServer plan_server;
@@ -190,6 +191,8 @@ struct SandtrayGraph::Impl {
     }
     for (auto& [name, p] : signal_out) p.shutdown();
     signal_out.clear();
+    for (auto& [name, p] : cameras) p.shutdown();
+    cameras.clear();
     for (auto& sub : subscribers) sub.shutdown();
     subscribers.clear();
     server.reset();
@@ -419,6 +422,33 @@ void SandtrayGraph::finger(double stamp, double x, double y) {
   msg.pose.position.x = x;
   msg.pose.position.y = y;
   impl_->poses.publish(msg);
+}
+
+void SandtrayGraph::camera(double stamp, const CameraFrame& frame) {
+  auto& d = *impl_;
+  auto publisher = [&d](const std::string& topic, auto message_type) -> ros::Publisher& {
+    auto it = d.cameras.find(topic);
+    if (it == d.cameras.end()) {
+      it = d.cameras.emplace(topic, d.nh->advertise<decltype(message_type)>(topic, 2)).first;
+    }
+    return it->second;
+  };
+  sensor_msgs::CompressedImage image;
+  image.header.stamp = stamp_of(stamp);
+  image.header.frame_id = frame.frame_id;
+  image.format = frame.format;
+  image.data = frame.jpeg;
+  publisher(frame.image_topic, sensor_msgs::CompressedImage{}).publish(image);
+  sensor_msgs::CameraInfo info;
+  info.header = image.header;
+  info.width = static_cast<std::uint32_t>(frame.width);
+  info.height = static_cast<std::uint32_t>(frame.height);
+  info.distortion_model = "plumb_bob";
+  info.D = {0, 0, 0, 0, 0};
+  info.K = {frame.K[0], 0, frame.K[2], 0, frame.K[1], frame.K[3], 0, 0, 1};
+  info.R = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  info.P = {frame.K[0], 0, frame.K[2], 0, 0, frame.K[1], frame.K[3], 0, 0, 0, 1, 0};
+  publisher(frame.info_topic, sensor_msgs::CameraInfo{}).publish(info);
 }
 
 void SandtrayGraph::trajectory(double stamp, const std::vector<std::array<double, 2>>& points) {
