@@ -280,6 +280,19 @@ def case_robot(g):
     rospy.Subscriber("sandtray/interaction_events", String, lambda m: releases.append(m.data))
     start = item_positions(rospy, timeout=30)
     robot = g.spawn("robot", [FREEPLAY, "robot", "--policy", "asocial", "--duration", "40", "--seed", "3"])
+    # Malformed input for the robot node: a non-finite item transform (logged and dropped, never applied).
+    from tf2_msgs.msg import TFMessage
+    from geometry_msgs.msg import TransformStamped
+    bad_tf = rospy.Publisher("/tf", TFMessage, queue_size=10)
+    wait_connected(bad_tf, "/tf (bad transforms)", timeout=30)
+    wrong = TransformStamped()
+    wrong.header.frame_id = "sandtray"
+    wrong.child_frame_id = "ball"
+    wrong.transform.translation.x = float("nan")
+    wrong.transform.rotation.w = 1.0
+    for _ in range(5):
+        bad_tf.publish(TFMessage(transforms=[wrong]))
+        time.sleep(0.1)
     try:
         robot.wait(timeout=80)
     except subprocess.TimeoutExpired:
@@ -294,6 +307,8 @@ def case_robot(g):
     moved = [i for i in set(released) if math.dist(start[i][:2], end[i][:2]) > 0.02]
     print("released by the robot:", released, "moved > 2 cm:", moved)
     check(moved, "an item the robot dragged moved on /tf")
+    check("/tf: dropped a non-finite transform sandtray → ball" in g.log("robot"),
+          "the robot node logs and drops the non-finite transform")
     try:
         serve.wait(timeout=60)
     except subprocess.TimeoutExpired:
