@@ -22,6 +22,7 @@
 #include "freeplay/planning/plan.hpp"
 #include "freeplay/policies/play_policy.hpp"
 #include "freeplay/runner/controller_episode.hpp"
+#include "freeplay/runner/episode_metrics.hpp"
 #include "freeplay/runner/perception_model.hpp"
 #include "freeplay/runner/run_folder.hpp"
 #include "freeplay/runner/sandtray_world.hpp"
@@ -200,7 +201,7 @@ class Episode {
       code_players(t);
       tray_.step(kTickS);
       drain_tray_events();
-      update_gaze_metrics(t);
+      metrics_.measure_gaze();
       if (observers_ != nullptr) notify();
       if (ended()) {
         t += kTickS;
@@ -840,6 +841,7 @@ class Episode {
       if (e.type == "item_released") on_release(e.data, t);
       log_.emit(std::move(e));
     }
+    metrics_.observe_new(log_, tray_.time(), SandtrayMetricsWorld(tray_));
   }
 
   void on_robot_release(const std::string& item) {
@@ -909,57 +911,7 @@ class Episode {
   }
 
   nlohmann::json record(double duration, const std::string& ended_by, const agents::SessionAnnotations& annotations) {
-    const double minutes = std::max(duration / 60.0, 1e-9);
-    nlohmann::json metrics;
-    auto shares = [&](const std::string& seat, const agents::ChildTimeline& timeline) {
-      for (const auto axis : agents::kAxes) {
-        const auto s = agents::label_shares(timeline, axis);
-        for (std::size_t i = 0; i < agents::label_count(axis); ++i) {
-          metrics["label_share"][seat][std::string(agents::label_name(axis, i))] = s[i];
-        }
-      }
-    };
-    shares("purple", *annotations.purple);
-    if (annotations.yellow) shares("yellow", *annotations.yellow);
-    int child_touches = 0;
-    int child_moves = 0;
-    for (const auto& c : children_) {
-      child_touches += c.touches;
-      child_moves += c.item_moves;
-      metrics["child"][c.seat_name]["touches_per_min"] = c.touches / minutes;
-      metrics["child"][c.seat_name]["item_moves_per_min"] = c.item_moves / minutes;
-    }
-    metrics["child_touches_per_min"] = child_touches / minutes;
-    metrics["child_item_moves_per_min"] = child_moves / minutes;
-    metrics["zone_transitions"] = zone_transitions_;
-    metrics["drawing_coverage"] = drawing_coverage_;
-    metrics["mutual_gaze_s"] = mutual_gaze_s_;
-    metrics["joint_attention_episodes"] = joint_attention_episodes_;
-    if (child_robot_) {
-      int actions = 0;
-      for (const char* type : {"move", "look", "point", "say", "cancel"}) {
-        const int n = robot_actions_.count(type) != 0 ? robot_actions_.at(type) : 0;
-        metrics["robot_actions"][type] = n;
-        actions += n;
-      }
-      metrics["robot_actions_per_min"] = actions / minutes;
-      metrics["robot_item_moves_per_min"] = robot_item_moves_ / minutes;
-      metrics["items_taken_by_robot_from_child"] = taken_by_robot_;
-      metrics["items_taken_by_child_from_robot"] = taken_by_child_;
-      metrics["robot_response_latency_s"] = freeplay::mean(response_latencies_);
-      metrics["planner"]["moves_started"] = moves_started_;
-      metrics["planner"]["success_rate"] = moves_started_ > 0 ? static_cast<double>(moves_succeeded_) / moves_started_ : std::nan("");
-      metrics["planner"]["moves_failed"] = moves_failed_;
-      metrics["planner"]["moves_cancelled"] = moves_cancelled_;
-      metrics["planner"]["path_length_m"] = freeplay::mean(path_lengths_m_);
-      metrics["planner"]["min_clearance_mm"] = freeplay::mean(clearances_mm_);
-      metrics["executor"]["moves_stolen_by_child"] = moves_stolen_;
-      metrics["executor"]["move_duration_s"] = freeplay::mean(move_durations_s_);
-      metrics["executor"]["placement_error_mm"] = freeplay::mean(placement_errors_mm_);
-      metrics["executor"]["sync_error_mm_mean"] = freeplay::mean(sync_mean_mm_);
-      metrics["executor"]["sync_error_mm_max"] = sync_mean_mm_.empty() ? std::nan("") : sync_max_mm_;
-      metrics["executor"]["sync_lag_ms"] = freeplay::mean(sync_lag_ms_);
-    }
+    const auto metrics = metrics_.to_json(duration, annotations, drawing_coverage_);
     nlohmann::json children = nlohmann::json::object();
     for (const auto& c : children_) {
       children[c.seat_name] = profile_json(c.agent->profile());
@@ -1016,6 +968,7 @@ class Episode {
   std::vector<std::string> pending_interaction_events_;
   std::map<std::string, Vec2> pending_placement_;
   // Metrics.
+  EpisodeMetrics metrics_{child_robot_};  // fed the event log at every drain of the tray's events
   std::map<std::string, ItemHistory> history_;
   std::map<std::string, int> robot_actions_;
   int robot_item_moves_ = 0;
