@@ -36,8 +36,6 @@ namespace freeplay::runner {
 namespace {
 
 constexpr double kTickS = 0.1;                  // the game's 10 Hz tick
-constexpr double kMinMoveM = 0.02;              // displacement that counts as an item move
-constexpr double kTakenWindowS = 30.0;          // "took an item from" window after the other's last move
 constexpr double kRobotArticulationSyllablesPerS = 3.5;  // NAO text-to-speech at its default speed
 constexpr double kRobotRestAfterS = 30.0;       // nao_behaviours: arm to rest after 30 s without poses
 // Approximate faces for gaze targets (sandtray frame, m): seated children on the long sides, the Nao's head
@@ -97,8 +95,6 @@ struct ChildSlot {
   bool announced_quit = false;
   agents::GazeKind last_gaze_kind = agents::GazeKind::Away;
   int last_gaze_item = -1;
-  int touches = 0;
-  int item_moves = 0;
 
   bool owns_finger(int finger) const { return finger > finger_offset && finger <= finger_offset + agents::kFingersPerChild; }
   bool speaking(double t) const { return t < speaking_until; }
@@ -121,14 +117,6 @@ class BodyFollower final : public planning::ArmFollower {
 
  private:
   RobotBody& body_;
-};
-
-/// Last mover and time of each item (for "took an item from" metrics).
-struct ItemHistory {
-  std::string last_mover;  // "purple", "yellow", "robot" or ""
-  double last_move_t = -1e9;
-  Vec2 grabbed_at = Vec2::Zero();
-  std::string zone_at_grab;
 };
 
 class Episode {
@@ -531,7 +519,6 @@ class Episode {
           }
           const auto outcome = tray_.touch_down(finger, cmd.point);
           down = true;
-          ++c.touches;
           c.last_touch_t = t;
           log_.emit({at, "child." + c.seat_name, "touch_down",
                      {{"finger", finger},
@@ -639,15 +626,6 @@ class Episode {
     robot_speaking_until_abs_ = now() + duration;
     speech_pending_result_ = count_as_action;
     log_.emit({now(), "robot", "say", {{"text", text}, {"to", to}, {"duration_s", duration}}});
-    if (count_as_action) count_action("say", t);
-  }
-
-  void count_action(const std::string& type, double t) {
-    ++robot_actions_[type];
-    if (awaiting_response_since_ >= 0) {
-      response_latencies_.push_back(t - awaiting_response_since_);
-      awaiting_response_since_ = -1.0;
-    }
   }
 
   void start_move(const policies::MoveItem& move, double t) {
@@ -661,8 +639,6 @@ class Episode {
     move_unreported_ = executor_->status() != planning::MoveStatus::Running;
     current_move_item_ = move.item;
     move_target_ = move.target;
-    count_action("move", t);
-    ++moves_started_;
     log_.emit({now(), "robot", "move_goal", {{"item", move.item}, {"x", move.target.x()}, {"y", move.target.y()}}});
     robot_gaze_ = {RobotGaze::Kind::Item, move.item};
   }
@@ -673,7 +649,6 @@ class Episode {
     if (const auto* move = std::get_if<policies::MoveItem>(&action)) {
       start_move(*move, t);
     } else if (const auto* look = std::get_if<policies::LookAt>(&action)) {
-      count_action("look", t);
       if (look->child) {
         robot_gaze_ = {RobotGaze::Kind::Child, *look->child};
         robot_gaze_point_ = body_->child_face(*look->child);
@@ -691,14 +666,12 @@ class Episode {
         log_.emit({now(), "robot", "look_at", std::move(data)});
       }
     } else if (const auto* point = std::get_if<policies::PointAt>(&action)) {
-      count_action("point", t);
       body_->point_at(point->point);
       last_pose_t_ = t;
       log_.emit({now(), "robot", "point_at", {{"x", point->point.x()}, {"y", point->point.y()}}});
     } else if (const auto* say = std::get_if<policies::Say>(&action)) {
       robot_say(say->text, say->addressee, t, true);
     } else if (std::holds_alternative<policies::CancelMove>(action)) {
-      count_action("cancel", t);
       executor_->cancel();
       log_.emit({now(), "robot", "cancel", nullptr});
     }
@@ -773,41 +746,29 @@ class Episode {
                         {"poses", outcome.poses_sent}};
     // The measurements go into the event too, so that a recording holds every metric (freeplay replay).
     if (outcome.plan.ok) {
-      path_lengths_m_.push_back(outcome.plan.metrics.path_length_m);
-      clearances_mm_.push_back(outcome.plan.metrics.min_clearance_m * 1000.0);
-      data["path_length_m"] = path_lengths_m_.back();
-      data["min_clearance_mm"] = clearances_mm_.back();
+      data["path_length_m"] = outcome.plan.metrics.path_length_m;
+      data["min_clearance_mm"] = outcome.plan.metrics.min_clearance_m * 1000.0;
     }
     if (outcome.sync.samples > 0) {
-      sync_mean_mm_.push_back(outcome.sync.mean_error_m * 1000.0);
-      sync_max_mm_ = std::max(sync_max_mm_, outcome.sync.max_error_m * 1000.0);
-      sync_lag_ms_.push_back(outcome.sync.best_lag_s * 1000.0);
-      data["sync_error_mm_mean"] = sync_mean_mm_.back();
+      data["sync_error_mm_mean"] = outcome.sync.mean_error_m * 1000.0;
       data["sync_error_mm_max"] = outcome.sync.max_error_m * 1000.0;
-      data["sync_lag_ms"] = sync_lag_ms_.back();
+      data["sync_lag_ms"] = outcome.sync.best_lag_s * 1000.0;
     }
-    if (outcome.poses_sent > 0) {
-      move_durations_s_.push_back(outcome.execution_duration_s);
-      data["duration_s"] = outcome.execution_duration_s;
-    }
+    if (outcome.poses_sent > 0) data["duration_s"] = outcome.execution_duration_s;
     data["stolen_by_child"] = outcome.stolen_by_child;
     switch (status) {
       case planning::MoveStatus::Succeeded:
         result.kind = policies::ActionResult::Kind::MoveSucceeded;
-        ++moves_succeeded_;
         pending_placement_[current_move_item_] = move_target_;
         break;
       case planning::MoveStatus::Preempted:
         result.kind = policies::ActionResult::Kind::MoveCancelled;
-        ++moves_cancelled_;
         break;
       default:
         result.kind = policies::ActionResult::Kind::MoveFailed;
         result.reason = outcome.reason();
-        ++moves_failed_;
         break;
     }
-    if (outcome.stolen_by_child) ++moves_stolen_;
     log_.emit({now(), "robot", "move_result", std::move(data)});
     robot_gaze_ = {RobotGaze::Kind::Tray, ""};
     policy_->on_result(result);
@@ -815,30 +776,13 @@ class Episode {
 
   // ---- events and metrics ----------------------------------------------------------------------------------
 
-  std::string mover_of(const nlohmann::json& data) const {
-    if (data.value("holder", "") == "robot") return "robot";
-    const int finger = data.value("finger", 0);
-    for (const auto& c : children_) {
-      if (c.owns_finger(finger)) return c.seat_name;
-    }
-    return "";
-  }
-
-  std::string zone_colour_at(const Vec2& p) const {
-    const auto* zone = tray_.zones().at(p);
-    return zone != nullptr ? zone->colour : "";
-  }
-
   void drain_tray_events() {
-    const double t = tray_.time() - freeplay_start_;
     for (auto& e : tray_.drain_events()) {
       if (e.type == "interaction_event") {
         const auto message = e.data.value("message", "");
         pending_interaction_events_.push_back(message);
         if (message.rfind("releasing_", 0) == 0) on_robot_release(message.substr(10));
       }
-      if (e.type == "item_grabbed") on_grab(e.data, t);
-      if (e.type == "item_released") on_release(e.data, t);
       log_.emit(std::move(e));
     }
     metrics_.observe_new(log_, tray_.time(), SandtrayMetricsWorld(tray_));
@@ -848,66 +792,8 @@ class Episode {
     const auto it = pending_placement_.find(item);
     if (it == pending_placement_.end() || models_.catalogue->find(item) == nullptr) return;
     const Vec2 at = tray_.item(item).pose.position();
-    placement_errors_mm_.push_back((at - it->second).norm() * 1000.0);
     if (executor_->status() != planning::MoveStatus::Running) executor_->observe_release(at);
     pending_placement_.erase(it);
-  }
-
-  void on_grab(const nlohmann::json& data, double t) {
-    const auto item = data.value("item", "");
-    const auto mover = mover_of(data);
-    auto& h = history_[item];
-    h.grabbed_at = tray_.item(item).pose.position();
-    h.zone_at_grab = zone_colour_at(h.grabbed_at);
-    const bool recently_other = !h.last_mover.empty() && h.last_mover != mover && t - h.last_move_t < kTakenWindowS;
-    bool shared_with_robot = false;
-    bool shared_with_child = false;
-    for (const auto& other : data.value("shared_with", nlohmann::json::array())) {
-      if (other == "robot") shared_with_robot = true; else shared_with_child = true;
-    }
-    if (mover == "robot" && (shared_with_child || (recently_other && h.last_mover != "robot"))) ++taken_by_robot_;
-    if (mover != "robot" && (shared_with_robot || (recently_other && h.last_mover == "robot"))) ++taken_by_child_;
-  }
-
-  void on_release(const nlohmann::json& data, double t) {
-    const auto item = data.value("item", "");
-    const auto mover = mover_of(data);
-    auto& h = history_[item];
-    const Vec2 at = tray_.item(item).pose.position();
-    if ((at - h.grabbed_at).norm() < kMinMoveM) return;
-    h.last_mover = mover;
-    h.last_move_t = t;
-    if (zone_colour_at(at) != h.zone_at_grab) ++zone_transitions_;
-    if (mover == "robot") {
-      ++robot_item_moves_;
-    } else {
-      for (auto& c : children_) {
-        if (c.seat_name == mover) ++c.item_moves;
-      }
-      awaiting_response_since_ = t;
-    }
-  }
-
-  void update_gaze_metrics(double t) {
-    (void)t;
-    if (child_robot_) {
-      const auto& c = children_[0];
-      const bool child_looks = c.last.gaze.kind == agents::GazeKind::Robot || c.last.gaze.kind == agents::GazeKind::PartnerFace;
-      const bool robot_looks = robot_gaze_.kind == RobotGaze::Kind::Child && robot_gaze_.target == c.seat_name;
-      if (child_looks && robot_looks) mutual_gaze_s_ += kTickS;
-      const bool joint = c.last.gaze.kind == agents::GazeKind::Item && c.last.gaze.item >= 0 &&
-                         robot_gaze_.kind == RobotGaze::Kind::Item &&
-                         agents::item_index(robot_gaze_.target) == c.last.gaze.item;
-      if (joint && !joint_attention_) ++joint_attention_episodes_;
-      joint_attention_ = joint;
-      return;
-    }
-    const auto& a = children_[0].last.gaze;
-    const auto& b = children_[1].last.gaze;
-    if (a.kind == agents::GazeKind::PartnerFace && b.kind == agents::GazeKind::PartnerFace) mutual_gaze_s_ += kTickS;
-    const bool joint = a.kind == agents::GazeKind::Item && b.kind == agents::GazeKind::Item && a.item >= 0 && a.item == b.item;
-    if (joint && !joint_attention_) ++joint_attention_episodes_;
-    joint_attention_ = joint;
   }
 
   nlohmann::json record(double duration, const std::string& ended_by, const agents::SessionAnnotations& annotations) {
@@ -969,31 +855,8 @@ class Episode {
   std::map<std::string, Vec2> pending_placement_;
   // Metrics.
   EpisodeMetrics metrics_{child_robot_};  // fed the event log at every drain of the tray's events
-  std::map<std::string, ItemHistory> history_;
-  std::map<std::string, int> robot_actions_;
-  int robot_item_moves_ = 0;
-  int taken_by_robot_ = 0;
-  int taken_by_child_ = 0;
-  int zone_transitions_ = 0;
-  double mutual_gaze_s_ = 0.0;
   cv::Mat freeplay_map_;          // the background published when free play started (the bare map)
   double drawing_coverage_ = 0.0;  // share of the map drawn over in the last background published in free play
-  int joint_attention_episodes_ = 0;
-  bool joint_attention_ = false;
-  double awaiting_response_since_ = -1.0;
-  std::vector<double> response_latencies_;
-  int moves_started_ = 0;
-  int moves_succeeded_ = 0;
-  int moves_failed_ = 0;
-  int moves_cancelled_ = 0;
-  std::vector<double> path_lengths_m_;
-  std::vector<double> move_durations_s_;
-  std::vector<double> placement_errors_mm_;
-  std::vector<double> clearances_mm_;
-  std::vector<double> sync_mean_mm_;
-  std::vector<double> sync_lag_ms_;
-  double sync_max_mm_ = 0.0;
-  int moves_stolen_ = 0;
   bool move_unreported_ = false;
   ChildActionSource* child_source_ = nullptr;  // replaces the agents' actions when set
   RobotActionSource* robot_source_ = nullptr;  // replaces the robot's policy and executor when set
