@@ -38,11 +38,6 @@
 
 namespace freeplay::recording {
 
-SessionPaths session_paths(const std::filesystem::path& dir) {
-  return {dir, dir / "freeplay.bag", dir / "freeplay.bag.active", dir / "experiment.yaml",
-          dir / "freeplay.annotations.freeplay-sim.yaml", dir / "freeplay.bag.yaml"};
-}
-
 namespace {
 
 using detail::kCameraLinks;

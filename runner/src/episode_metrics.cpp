@@ -5,8 +5,6 @@
 #include "freeplay/agents/labels.hpp"
 #include "freeplay/agents/perception.hpp"
 #include "freeplay/core/statistics.hpp"
-#include "freeplay/sim/sandtray.hpp"
-#include "freeplay/sim/zones.hpp"
 
 namespace freeplay::runner {
 
@@ -19,13 +17,6 @@ constexpr double kTakenWindowS = 30.0;  // "took an item from" window after the 
 bool starts_with(const std::string& s, std::string_view prefix) { return s.rfind(prefix, 0) == 0; }
 
 }  // namespace
-
-Vec2 SandtrayMetricsWorld::item_position(const std::string& item) const { return tray_.item(item).pose.position(); }
-
-std::string SandtrayMetricsWorld::zone_at(const Vec2& p) const {
-  const auto* zone = tray_.zones().at(p);
-  return zone != nullptr ? zone->colour : "";
-}
 
 EpisodeMetrics::EpisodeMetrics(bool child_robot) : child_robot_(child_robot) {
   seats_ = child_robot ? std::vector<std::string>{"purple"} : std::vector<std::string>{"purple", "yellow"};
