@@ -3,8 +3,6 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <cstring>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <opencv2/imgcodecs.hpp>
@@ -14,6 +12,7 @@
 #include "freeplay/agents/perception.hpp"
 #include "freeplay/core/error.hpp"
 #include "freeplay/core/statistics.hpp"
+#include "freeplay/recording/bag_check.hpp"
 #include "freeplay/recording/bag_recorder.hpp"
 #include "freeplay/recording/publishers.hpp"
 #include "freeplay/recording/ros_messages.hpp"
@@ -129,81 +128,6 @@ void feed_events(const SessionRecording& rec, double freeplay_start, double dura
   feed_until([](double) { return true; });
 }
 
-/// The fields of a bag record header (`len name=value` pairs); empty on a malformed header.
-std::map<std::string, std::string> header_fields(const std::string& header) {
-  std::map<std::string, std::string> fields;
-  std::size_t at = 0;
-  while (at + 4 <= header.size()) {
-    std::uint32_t length = 0;
-    std::memcpy(&length, header.data() + at, 4);
-    at += 4;
-    if (length > header.size() - at) return {};
-    const auto field = header.substr(at, length);
-    at += length;
-    const auto eq = field.find('=');
-    if (eq == std::string::npos) return {};
-    fields[field.substr(0, eq)] = field.substr(eq + 1);
-  }
-  return fields;
-}
-
-/// A little-endian uint32 or uint64 field of a record header (0 when absent or of another size).
-std::uint64_t uint_field(const std::map<std::string, std::string>& fields, const std::string& name) {
-  const auto it = fields.find(name);
-  if (it == fields.end() || (it->second.size() != 4 && it->second.size() != 8)) return 0;
-  std::uint64_t value = 0;
-  std::memcpy(&value, it->second.data(), it->second.size());
-  return value;
-}
-
-/// Walks the records of a ROS bag 2.0 file (`#ROSBAG V2.0`, then per record: header length, header, data length,
-/// data; uncompressed chunks hold records too) and throws an InputError naming the file and byte offset where a
-/// length runs past its end or a chunk claims more than kMaxChunkBytes, before rosbag, which trusts the lengths and
-/// allocates what they say, reads it. An unindexed bag (index_pos 0) is left to rosbag's own message.
-void check_record_lengths(const std::filesystem::path& file) {
-  constexpr std::uint64_t kMaxChunkBytes = 512ULL << 20;
-  std::ifstream in(file, std::ios::binary);
-  const auto size = static_cast<std::uint64_t>(std::filesystem::file_size(file));
-  auto fail = [&](std::uint64_t at, const std::string& what) {
-    throw InputError(fmt::format("corrupt bag record at byte {}: {}", at, what), "SESSION_DIR",
-                     "a ROS 1 bag written by `freeplay run --record`", {file.string()});
-  };
-  std::string magic(13, '\0');
-  if (!in.read(magic.data(), 13) || magic != "#ROSBAG V2.0\n") return;  // rosbag names the version problem
-  auto read_u32 = [&](std::uint64_t at) {
-    std::uint32_t value = 0;
-    in.seekg(static_cast<std::streamoff>(at));
-    if (!in.read(reinterpret_cast<char*>(&value), 4)) fail(at, "the file ends inside a length");
-    return std::uint64_t{value};
-  };
-  // Walks [begin, end): returns nothing, throws on the first bad length.
-  auto walk = [&](auto&& self, std::uint64_t begin, std::uint64_t end, bool top) -> void {
-    for (std::uint64_t at = begin; at < end;) {
-      if (end - at < 4) fail(at, "the file ends inside a length");
-      const auto header_length = read_u32(at);
-      if (header_length > end - at - 4) fail(at, fmt::format("a header of {} bytes runs past the end", header_length));
-      std::string header(header_length, '\0');
-      in.read(header.data(), static_cast<std::streamsize>(header_length));
-      const auto data_at = at + 4 + header_length;
-      if (end - data_at < 4) fail(data_at, "the file ends inside a length");
-      const auto data_length = read_u32(data_at);
-      if (data_length > end - data_at - 4) fail(data_at, fmt::format("data of {} bytes run past the end", data_length));
-      const auto fields = header_fields(header);
-      const auto op = fields.find("op");
-      if (top && op != fields.end() && op->second == std::string(1, '\x03') && fields.contains("index_pos") &&
-          uint_field(fields, "index_pos") == 0) {
-        return;  // unindexed: rosbag says so
-      }
-      if (op != fields.end() && op->second == std::string(1, '\x05')) {
-        if (uint_field(fields, "size") > kMaxChunkBytes) fail(at, "a chunk claims more than 512 MiB");
-        if (fields.contains("compression") && fields.at("compression") == "none") self(self, data_at + 4, data_at + 4 + data_length, false);
-      }
-      at = data_at + 4 + data_length;
-    }
-  };
-  walk(walk, 13, size, true);
-}
-
 /// Every message of the bag that replay needs, into `out`.
 void read_messages(Bag& bag, SessionRecording& out) {
   rosbag::View view(bag.get());
@@ -303,7 +227,7 @@ std::filesystem::path open_session_bag(const std::filesystem::path& path, Bag& b
                        "a session folder (<run>/sessions/<episode id>) or a .bag file");
     }
   }
-  check_record_lengths(file);
+  check_bag_structure(file);
   try {
     bag.open(file.string(), rosbag::bagmode::Read);
   } catch (const rosbag::BagUnindexedException&) {
