@@ -7,6 +7,7 @@
 #include <fstream>
 #include <thread>
 #include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
 
 #include "freeplay/core/error.hpp"
 #include "freeplay/recording/bag_recorder.hpp"
@@ -18,6 +19,7 @@
 #include "freeplay/agents/labels.hpp"
 #include "freeplay/recording/publishers.hpp"
 #include "freeplay/recording/replay.hpp"
+#include "freeplay/recording/session_videos.hpp"
 #include "freeplay/recording/ros_messages.hpp"
 #include "freeplay/runner/episode.hpp"
 #include "freeplay/sim/sandtray.hpp"
@@ -821,4 +823,33 @@ TEST(Replay, ARecordLengthPastTheEndOfTheFileIsRefusedBeforeRosbagReadsIt) {
   const auto e = replay_error(file);
   EXPECT_EQ(e.where().file, file.string()) << e.what();
   EXPECT_NE(std::string(e.what()).find("corrupt bag record at byte 13"), std::string::npos) << e.what();
+}
+
+TEST(SessionVideos, TheSessionFolderHoldsEachCamerasRawVideo) {
+  const auto& r = child_robot();
+  const auto video = r.run_dir / "sessions" / "tiny-0000" / "video" / "camera_purple_raw.mkv";
+  ASSERT_TRUE(std::filesystem::exists(video));
+  EXPECT_FALSE(std::filesystem::exists(r.run_dir / "sessions" / "tiny-0000" / "video" / "camera_purple_raw.partial.mkv"));
+  cv::VideoCapture capture(video.string(), cv::CAP_FFMPEG);
+  ASSERT_TRUE(capture.isOpened());
+  int frames = 0;
+  cv::Mat frame;
+  while (capture.read(frame)) {
+    EXPECT_EQ(frame.cols, 64);
+    EXPECT_EQ(frame.rows, 48);
+    ++frames;
+  }
+  EXPECT_EQ(frames, r.frames);  // one video frame per published colour image
+  EXPECT_EQ(raw_video_name("env_camera"), "camera_env_raw.mkv");
+}
+
+TEST(SessionVideos, ADiscardedSessionLeavesNoVideo) {
+  const auto dir = fresh_dir("videos-discard");
+  {
+    SessionVideos videos(dir, {{"camera_yellow", 15.0}});
+    videos.write("camera_yellow", cv::Mat(48, 64, CV_8UC3, cv::Scalar(1, 2, 3)));
+    ASSERT_TRUE(std::filesystem::exists(dir / "video" / "camera_yellow_raw.partial.mkv"));
+    videos.discard();
+  }
+  EXPECT_TRUE(std::filesystem::is_empty(dir / "video"));
 }
