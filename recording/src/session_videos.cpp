@@ -28,7 +28,7 @@ SessionVideos::SessionVideos(std::filesystem::path session_dir, std::map<std::st
 SessionVideos::~SessionVideos() { discard(); }
 
 void SessionVideos::write(const std::string& camera, const cv::Mat& rgb) {
-  if (rgb.empty()) return;
+  if (rgb.empty() || rgb.type() != CV_8UC3) return;  // the bag's image encoder reports a malformed image
   auto& video = videos_[camera];
   if (!video) {
     video = std::make_unique<Video>();

@@ -24,7 +24,8 @@ class SessionVideos {
   SessionVideos(const SessionVideos&) = delete;
   SessionVideos& operator=(const SessionVideos&) = delete;
 
-  /// Appends one RGB frame (CV_8UC3, R, G, B) of `camera`; opens its file at the first frame. Throws
+  /// Appends one RGB frame (CV_8UC3, R, G, B; other images are skipped) of `camera`; opens its file at the first
+  /// frame. Throws
   /// std::runtime_error when no H.264 Matroska writer can be opened.
   void write(const std::string& camera, const cv::Mat& rgb);
   /// Closes every video and gives it its final name.
