@@ -31,6 +31,7 @@
 #include "freeplay/recording/robot_links.hpp"
 #include "freeplay/recording/ros_messages.hpp"
 #include "freeplay/recording/session_files.hpp"
+#include "freeplay/recording/session_videos.hpp"
 #include "message_builders.hpp"
 #include "freeplay/sim/sandtray.hpp"
 #include "freeplay/sim/screen.hpp"
@@ -38,11 +39,6 @@
 #include "freeplay/sim/zones.hpp"
 
 namespace freeplay::recording {
-
-SessionPaths session_paths(const std::filesystem::path& dir) {
-  return {dir, dir / "freeplay.bag", dir / "freeplay.bag.active", dir / "experiment.yaml",
-          dir / "freeplay.annotations.freeplay-sim.yaml", dir / "freeplay.bag.yaml"};
-}
 
 namespace {
 
@@ -105,6 +101,7 @@ struct BagRecorder::Impl {
   std::optional<double> freeplay_start;
   PinsoroCsv csv;           // the collated 30 Hz table of free play
   std::unique_ptr<PoseRecorder> poses;  // freeplay.poses.json
+  std::unique_ptr<SessionVideos> videos;  // video/camera_*_raw.mkv (when cameras render)
   std::vector<std::pair<std::string, std::unique_ptr<MicrophoneStream>>> microphones;  // topic → SR300 microphone
   std::uint64_t utterances = 0;
   PublisherClocks clocks;  // every real publisher's phase and jitter (seeded by the episode)
@@ -468,6 +465,7 @@ void BagRecorder::begin(const runner::EpisodeInfo& info) {
   for (const auto& stale : {d.paths.bag, d.paths.active_bag, d.paths.annotations, d.paths.bag_yaml}) {
     std::filesystem::remove(stale, error);
   }
+  std::filesystem::remove_all(d.paths.dir / "video", error);  // an earlier, interrupted attempt's videos
   try {
     d.write_experiment(nullptr, false);
     d.bag.open(d.paths.active_bag.string(), rosbag::bagmode::Write);
@@ -485,6 +483,11 @@ void BagRecorder::begin(const runner::EpisodeInfo& info) {
                                                                                  fmt::format("freeplay_{}_audio", camera),
                                                                   splitmix64(d.seed ^ fnv1a64(camera))));
   }
+  std::map<std::string, double> rates_hz;
+  if (info.scenario != nullptr) {
+    for (const auto& camera : info.scenario->cameras) rates_hz[camera.name] = camera.rate_hz;
+  }
+  d.videos = std::make_unique<SessionVideos>(d.paths.dir, std::move(rates_hz));
   d.bag.get().setChunkThreshold(static_cast<std::uint32_t>(d.settings.chunk_kb) * 1024U);
   d.bag.get().setCompression(compression_of(d.settings.compression));
   d.open = true;
@@ -528,6 +531,7 @@ void BagRecorder::write(const stage::FramePack& frame) {
   auto& d = *impl_;
   if (!d.open) return;
   const auto names = camera_topics(frame.camera);
+  d.videos->write(frame.camera, frame.rgb);
   // The camera driver stamps each stream when it publishes it: colour and depth each with their own phase.
   const double t = d.clocks.publish(frame.camera + "/rgb", frame.stamp, kCameraMaxPhaseS);
   const double t_depth = d.clocks.publish(frame.camera + "/depth", frame.stamp, kCameraMaxPhaseS);
@@ -608,6 +612,7 @@ void BagRecorder::end(runner::EpisodeResult& result) {
   d.put(topics::kAnnotations, end_t, annotations, true);
   d.write_audio(end_t, runner::EpisodeSnapshot{}, true);
   d.close_bag();
+  d.videos->close();
   const double base = ros_time(d.freeplay_start.value_or(0.0)).toSec();
   write_file_atomically(d.paths.annotations,
                         agents::to_pinsoro_yaml(result.annotations, base,
@@ -633,6 +638,7 @@ void BagRecorder::abort() {
   } catch (const std::exception&) {  // the episode's own error is the one to report; the bag is closed
   }
   if (d.poses) d.poses->discard();
+  d.videos->discard();
   d.write_experiment(nullptr, false);
 }
 

@@ -159,7 +159,7 @@ class RobotNode {
       auto o = observe(t, view, actuators.world());
       robot_.step(t, o, actuators);
     }
-    const auto& m = robot_.metrics();
+    const auto& m = robot_.counts();
     stats_.moves_started = m.moves_started;
     stats_.moves_succeeded = m.moves_succeeded;
     stats_.moves_failed = m.moves_failed;

@@ -83,7 +83,7 @@ class Episode {
       world_.code_players(t);
       tray.step(kTickS);
       world_.drain_tray_events();
-      world_.update_gaze_metrics();
+      world_.measure_gaze();
       if (observers_ != nullptr) notify();
       if (world_.ended()) {
         t += kTickS;
@@ -113,8 +113,7 @@ class Episode {
       result.children.push_back({c.agent->profile(), coded.value_or(agents::ChildTimeline{}), c.agent->timeline(),
                                  c.agent->quit_time(), c.agent->counters()});
     }
-    result.record = world_.record(duration, ended_by, result.annotations,
-                                  robot_ ? robot_->metrics() : RobotSideMetrics{});
+    result.record = world_.record(duration, ended_by, result.annotations);
     result.record["simulated_s"] = result.simulated_s;
     result.record["wall_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     if (observers_ != nullptr) {

@@ -8,7 +8,6 @@
 #include <cmath>
 
 #include "freeplay/core/error.hpp"
-#include "freeplay/core/statistics.hpp"
 
 namespace freeplay::runner {
 
@@ -99,14 +98,14 @@ void RobotSide::start_move(const policies::MoveItem& move, double t, RobotWorld&
                                      policy_->name(), t, move.item, move.target.x(), move.target.y());
     if (bad_move_ == BadMove::Throw) throw InputError(problem, "MoveItem", "a known item and a finite target");
     spdlog::warn("{}: not executed", problem);
-    ++metrics_.moves_failed;
+    ++counts_.moves_failed;
     policy_->on_result({policies::ActionResult::Kind::MoveFailed, move.item, "bad goal"});
     return;
   }
   executor_->start({move.item, move.target}, planning_world, planner_rng_);
   move_unreported_ = !moving();
   move_ = move;
-  ++metrics_.moves_started;
+  ++counts_.moves_started;
   world.move_started(move, moving(), t);
 }
 
@@ -121,59 +120,34 @@ void RobotSide::finish_move(RobotWorld& world, double t) {
                       {"target_in_reach", outcome.target_in_reach},
                       {"poses", outcome.poses_sent}};
   // The measurements go into the event too, so that a recording holds every metric (freeplay replay).
-  auto& m = metrics_;
   if (outcome.plan.ok) {
-    m.path_lengths_m.push_back(outcome.plan.metrics.path_length_m);
-    m.clearances_mm.push_back(outcome.plan.metrics.min_clearance_m * 1000.0);
-    data["path_length_m"] = m.path_lengths_m.back();
-    data["min_clearance_mm"] = m.clearances_mm.back();
+    data["path_length_m"] = outcome.plan.metrics.path_length_m;
+    data["min_clearance_mm"] = outcome.plan.metrics.min_clearance_m * 1000.0;
   }
   if (outcome.sync.samples > 0) {
-    m.sync_mean_mm.push_back(outcome.sync.mean_error_m * 1000.0);
-    m.sync_max_mm = std::max(m.sync_max_mm, outcome.sync.max_error_m * 1000.0);
-    m.sync_lag_ms.push_back(outcome.sync.best_lag_s * 1000.0);
-    data["sync_error_mm_mean"] = m.sync_mean_mm.back();
+    data["sync_error_mm_mean"] = outcome.sync.mean_error_m * 1000.0;
     data["sync_error_mm_max"] = outcome.sync.max_error_m * 1000.0;
-    data["sync_lag_ms"] = m.sync_lag_ms.back();
+    data["sync_lag_ms"] = outcome.sync.best_lag_s * 1000.0;
   }
-  if (outcome.poses_sent > 0) {
-    m.move_durations_s.push_back(outcome.execution_duration_s);
-    data["duration_s"] = outcome.execution_duration_s;
-  }
+  if (outcome.poses_sent > 0) data["duration_s"] = outcome.execution_duration_s;
   data["stolen_by_child"] = outcome.stolen_by_child;
   switch (status) {
     case planning::MoveStatus::Succeeded:
       result.kind = policies::ActionResult::Kind::MoveSucceeded;
-      ++m.moves_succeeded;
+      ++counts_.moves_succeeded;
       break;
     case planning::MoveStatus::Preempted:
       result.kind = policies::ActionResult::Kind::MoveCancelled;
-      ++m.moves_cancelled;
+      ++counts_.moves_cancelled;
       break;
     default:
       result.kind = policies::ActionResult::Kind::MoveFailed;
       result.reason = outcome.reason();
-      ++m.moves_failed;
+      ++counts_.moves_failed;
       break;
   }
-  if (outcome.stolen_by_child) ++m.moves_stolen;
   world.move_ended(move_, status, std::move(data), t);
   policy_->on_result(result);
-}
-
-void RobotSideMetrics::write(nlohmann::json& planner, nlohmann::json& executor) const {
-  const auto& m = *this;
-  planner["moves_started"] = m.moves_started;
-  planner["success_rate"] = m.moves_started > 0 ? static_cast<double>(m.moves_succeeded) / m.moves_started : std::nan("");
-  planner["moves_failed"] = m.moves_failed;
-  planner["moves_cancelled"] = m.moves_cancelled;
-  planner["path_length_m"] = freeplay::mean(m.path_lengths_m);
-  planner["min_clearance_mm"] = freeplay::mean(m.clearances_mm);
-  executor["moves_stolen_by_child"] = m.moves_stolen;
-  executor["move_duration_s"] = freeplay::mean(m.move_durations_s);
-  executor["sync_error_mm_mean"] = freeplay::mean(m.sync_mean_mm);
-  executor["sync_error_mm_max"] = m.sync_mean_mm.empty() ? std::nan("") : m.sync_max_mm;
-  executor["sync_lag_ms"] = freeplay::mean(m.sync_lag_ms);
 }
 
 }  // namespace freeplay::runner

@@ -327,7 +327,6 @@ void SimWorld::apply(ChildSlot& c, double t) {
         }
         const auto outcome = tray_.touch_down(finger, cmd.point);
         down = true;
-        ++c.touches;
         c.last_touch_t = t;
         log_.emit({at, "child." + c.seat_name, "touch_down",
                    {{"finger", finger},

@@ -5,8 +5,9 @@
 // protocol loop (episode.cpp) drives it; the robot side (RobotSide) acts on it through RobotWorld.
 //
 // Its methods live in three files along their seams: sim_world.cpp (children, coder, snapshots),
-// sim_world_robot.cpp (the robot in the room: observation, actuators, external commands) and episode_metrics.cpp
-// (the game's events and the session metrics).
+// sim_world_robot.cpp (the robot in the room: observation, actuators, external commands) and sim_world_events.cpp
+// (the game's events and the episode record). The metrics are EpisodeMetrics' (episode_metrics.cpp), fed the event
+// log as replay feeds a recording.
 
 #include <array>
 #include <map>
@@ -24,6 +25,7 @@
 #include "freeplay/core/rng.hpp"
 #include "freeplay/runner/child_action_source.hpp"
 #include "freeplay/runner/episode.hpp"
+#include "freeplay/runner/episode_metrics.hpp"
 #include "freeplay/runner/perception_model.hpp"
 #include "freeplay/runner/robot_action_source.hpp"
 #include "freeplay/runner/robot_side.hpp"
@@ -33,7 +35,7 @@ namespace freeplay::runner::detail {
 
 inline constexpr double kTickS = 0.1;  ///< the game's 10 Hz tick
 
-/// One seated child: its agent, finger bookkeeping and per-episode counters.
+/// One seated child: its agent and finger bookkeeping.
 struct ChildSlot {
   std::string seat_name;                       ///< "purple" | "yellow"
   agents::Seat seat = agents::Seat::Bottom;    ///< where it sits
@@ -46,8 +48,6 @@ struct ChildSlot {
   bool announced_quit = false;                 ///< `wants_to_stop` logged
   agents::GazeKind last_gaze_kind = agents::GazeKind::Away;  ///< last logged gaze
   int last_gaze_item = -1;                     ///< last logged gazed item
-  int touches = 0;                             ///< touch-downs this episode
-  int item_moves = 0;                          ///< item moves this episode
 
   /// True when global finger `finger` (1…6) is one of this child's.
   bool owns_finger(int finger) const { return finger > finger_offset && finger <= finger_offset + agents::kFingersPerChild; }
@@ -59,14 +59,6 @@ struct ChildSlot {
 struct RobotGaze {
   enum class Kind { Tray, Item, Child } kind = Kind::Tray;  ///< kind of target
   std::string target;                                      ///< item name or seat
-};
-
-/// Last mover and time of each item (for "took an item from" metrics).
-struct ItemHistory {
-  std::string last_mover;        ///< "purple", "yellow", "robot" or ""
-  double last_move_t = -1e9;     ///< free-play s
-  Vec2 grabbed_at = Vec2::Zero();  ///< centre when grabbed
-  std::string zone_at_grab;      ///< zone colour there
 };
 
 /// The simulated world of one episode (see the file comment).
@@ -129,15 +121,14 @@ class SimWorld final : public RobotWorld {
   /// The Nao's arm goes to rest after 30 s without poses (nao_behaviours).
   void rest_when_idle(double t);
 
-  // ---- events and metrics (episode_metrics.cpp) ----
-  /// Logs the game's new events and updates the metrics they feed.
+  // ---- events and record (sim_world_events.cpp) ----
+  /// Logs the game's new events and feeds the metrics every event logged since the last drain.
   void drain_tray_events();
-  /// Mutual gaze and joint attention of this tick.
-  void update_gaze_metrics();
-  /// The episode record (metrics, children, provenance) for free play of `duration` s ended by `ended_by`, with
-  /// the robot side's planner and executor metrics.
-  nlohmann::json record(double duration, const std::string& ended_by, const agents::SessionAnnotations& annotations,
-                        const RobotSideMetrics& robot) const;
+  /// Mutual gaze and joint attention of this free-play tick (after its events were drained).
+  void measure_gaze() { metrics_.measure_gaze(); }
+  /// The episode record (metrics, children, provenance) for free play of `duration` s ended by `ended_by`.
+  nlohmann::json record(double duration, const std::string& ended_by,
+                        const agents::SessionAnnotations& annotations) const;
 
  private:
   class BodyFollower;
@@ -149,14 +140,8 @@ class SimWorld final : public RobotWorld {
   void apply(ChildSlot& c, double t);
   Eigen::Vector3d face_of(const std::string& seat) const;
   Eigen::Vector3d gaze_point_of(const ChildSlot& c) const;
-  void count_action(const std::string& type, double t);
   void robot_finger(const Vec2& p, double t);
   void look_at_point(const Eigen::Vector3d& point);
-  std::string mover_of(const nlohmann::json& data) const;
-  std::string zone_colour_at(const Vec2& p) const;
-  void on_robot_release(const std::string& item);
-  void on_grab(const nlohmann::json& data, double t);
-  void on_release(const nlohmann::json& data, double t);
 
   const Scenario& scenario_;
   const SharedModels& models_;
@@ -189,22 +174,10 @@ class SimWorld final : public RobotWorld {
   std::optional<Vec2> robot_finger_;
   Eigen::Vector3d robot_gaze_point_;
   std::vector<std::string> pending_interaction_events_;
-  std::map<std::string, Vec2> pending_placement_;
   // Metrics.
-  std::map<std::string, ItemHistory> history_;
-  std::map<std::string, int> robot_actions_;
-  int robot_item_moves_ = 0;
-  int taken_by_robot_ = 0;
-  int taken_by_child_ = 0;
-  int zone_transitions_ = 0;
-  double mutual_gaze_s_ = 0.0;
+  EpisodeMetrics metrics_{child_robot_};  // fed the event log at every drain of the tray's events
   cv::Mat freeplay_map_;           // the background published when free play started (the bare map)
   double drawing_coverage_ = 0.0;  // share of the map drawn over in the last background published in free play
-  int joint_attention_episodes_ = 0;
-  bool joint_attention_ = false;
-  double awaiting_response_since_ = -1.0;
-  std::vector<double> response_latencies_;
-  std::vector<double> placement_errors_mm_;
   // Snapshots.
   std::vector<ChildSnapshot> snapshot_children_;
   RobotSnapshot robot_snapshot_;

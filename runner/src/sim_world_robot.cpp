@@ -75,17 +75,8 @@ void SimWorld::greet(const std::string& text) {
   log_.emit({now(), "robot", "say", {{"text", text}, {"to", ""}, {"duration_s", duration}}});
 }
 
-void SimWorld::count_action(const std::string& type, double t) {
-  ++robot_actions_[type];
-  if (awaiting_response_since_ >= 0) {
-    response_latencies_.push_back(t - awaiting_response_since_);
-    awaiting_response_since_ = -1.0;
-  }
-}
-
-void SimWorld::move_started(const policies::MoveItem& move, bool running, double t) {
+void SimWorld::move_started(const policies::MoveItem& move, bool running, double /*t*/) {
   robot_moving_ = running;
-  count_action("move", t);
   log_.emit({now(), "robot", "move_goal", {{"item", move.item}, {"x", move.target.x()}, {"y", move.target.y()}}});
   robot_gaze_ = {RobotGaze::Kind::Item, move.item};
 }
@@ -99,10 +90,9 @@ void SimWorld::robot_finger(const Vec2& p, double t) {
 
 void SimWorld::finger(const planning::TimedPose& pose, double t) { robot_finger(pose.position, t); }
 
-void SimWorld::move_ended(const policies::MoveItem& move, planning::MoveStatus status, nlohmann::json fields,
-                          double /*t*/) {
+void SimWorld::move_ended(const policies::MoveItem& /*move*/, planning::MoveStatus /*status*/,
+                          nlohmann::json fields, double /*t*/) {
   robot_moving_ = false;
-  if (status == planning::MoveStatus::Succeeded) pending_placement_[move.item] = move.target;
   log_.emit({now(), "robot", "move_result", std::move(fields)});
   robot_gaze_ = {RobotGaze::Kind::Tray, ""};
 }
@@ -119,8 +109,7 @@ void SimWorld::look_at_point(const Eigen::Vector3d& point) {
   log_.emit({now(), "robot", "look_at", std::move(data)});
 }
 
-void SimWorld::look_at(const policies::LookAt& look, double t) {
-  count_action("look", t);
+void SimWorld::look_at(const policies::LookAt& look, double /*t*/) {
   if (look.child) {
     robot_gaze_ = {RobotGaze::Kind::Child, *look.child};
     robot_gaze_point_ = body_->child_face(*look.child);
@@ -132,7 +121,6 @@ void SimWorld::look_at(const policies::LookAt& look, double t) {
 }
 
 void SimWorld::point_at(const Vec2& point, double t) {
-  count_action("point", t);
   body_->point_at(point);
   last_pose_t_ = t;
   log_.emit({now(), "robot", "point_at", {{"x", point.x()}, {"y", point.y()}}});
@@ -143,11 +131,9 @@ void SimWorld::say(const std::string& text, const std::string& to, double durati
   robot_speaking_until_ = t + duration_s;
   robot_speaking_until_abs_ = now() + duration_s;
   log_.emit({now(), "robot", "say", {{"text", text}, {"to", to}, {"duration_s", duration_s}}});
-  count_action("say", t);
 }
 
-void SimWorld::cancel(double t) {
-  count_action("cancel", t);
+void SimWorld::cancel(double /*t*/) {
   log_.emit({now(), "robot", "cancel", nullptr});
 }
 
@@ -157,10 +143,7 @@ void SimWorld::apply_external(const RobotCommands& commands, double t) {
     robot_finger(p, t);
     body_->follow_finger(p);
   }
-  if (commands.look_at) {
-    count_action("look", t);
-    look_at_point(*commands.look_at);
-  }
+  if (commands.look_at) look_at_point(*commands.look_at);
   if (commands.point_at) point_at(*commands.point_at, t);
 }
 

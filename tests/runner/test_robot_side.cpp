@@ -104,8 +104,8 @@ TEST(RobotSide, AMoveStreamsPosesAndEndsWithItsMeasurements) {
   ASSERT_EQ(policy->results.size(), 1U);
   EXPECT_EQ(policy->results[0].kind, policies::ActionResult::Kind::MoveSucceeded);
   EXPECT_TRUE(policy->seen_moving[1]);  // the policy sees its own move running
-  EXPECT_EQ(side.metrics().moves_started, 1);
-  EXPECT_EQ(side.metrics().moves_succeeded, 1);
+  EXPECT_EQ(side.counts().moves_started, 1);
+  EXPECT_EQ(side.counts().moves_succeeded, 1);
 }
 
 TEST(RobotSide, CancelMoveEndsTheMoveAndTellsThePolicy) {
@@ -119,7 +119,7 @@ TEST(RobotSide, CancelMoveEndsTheMoveAndTellsThePolicy) {
   EXPECT_EQ(world.calls[2], "move_ended ball preempted");
   ASSERT_EQ(policy->results.size(), 1U);
   EXPECT_EQ(policy->results[0].kind, policies::ActionResult::Kind::MoveCancelled);
-  EXPECT_EQ(side.metrics().moves_cancelled, 1);
+  EXPECT_EQ(side.counts().moves_cancelled, 1);
   EXPECT_FALSE(side.moving());
 }
 
@@ -136,7 +136,7 @@ TEST(RobotSide, ABadMoveThrowsInProcessAndIsReportedOnAGraph) {
   ASSERT_EQ(policy->results.size(), 2U);
   EXPECT_EQ(policy->results[0].kind, policies::ActionResult::Kind::MoveFailed);
   EXPECT_EQ(policy->results[1].kind, policies::ActionResult::Kind::MoveFailed);
-  EXPECT_EQ(lenient.metrics().moves_failed, 2);
+  EXPECT_EQ(lenient.counts().moves_failed, 2);
 }
 
 TEST(RobotSide, SpeechFinishesAfterItsArticulationTime) {

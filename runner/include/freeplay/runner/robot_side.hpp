@@ -57,22 +57,13 @@ enum class BadMove {
   Report,  ///< logged and reported to the policy as MoveFailed (live graphs)
 };
 
-/// Counters and measurements of the robot side's moves (episode metrics `planner` and `executor`).
-struct RobotSideMetrics {
-  int moves_started = 0;                 ///< MoveItem actions executed
-  int moves_succeeded = 0;               ///< ended with the item at its target
-  int moves_failed = 0;                  ///< refused, unplannable, aborted
-  int moves_cancelled = 0;               ///< pre-empted by CancelMove
-  int moves_stolen = 0;                  ///< a child grabbed the item during the move
-  std::vector<double> path_lengths_m;    ///< per planned move
-  std::vector<double> clearances_mm;     ///< per planned move
-  std::vector<double> move_durations_s;  ///< per move that sent poses
-  std::vector<double> sync_mean_mm;      ///< finger–fingertip error, per move with samples
-  std::vector<double> sync_lag_ms;       ///< best lag, per move with samples
-  double sync_max_mm = 0.0;              ///< largest error over every move
-
-  /// The metrics as the episode record's `planner` and `executor` objects (placement error excluded).
-  void write(nlohmann::json& planner, nlohmann::json& executor) const;
+/// How the robot side's moves ended so far (a `freeplay robot` node's statistics). An episode's `planner` and
+/// `executor` metrics are not counted here: EpisodeMetrics computes them from the move events.
+struct RobotSideCounts {
+  int moves_started = 0;    ///< MoveItem actions executed
+  int moves_succeeded = 0;  ///< ended with the item at its target
+  int moves_failed = 0;     ///< bad goals, refused, unplannable, aborted
+  int moves_cancelled = 0;  ///< pre-empted by CancelMove
 };
 
 /// The robot's decisions: one policy, one planner stream, one move executor (one instance per episode or node).
@@ -95,8 +86,8 @@ class RobotSide {
   const std::string& current_item() const { return move_.item; }
   /// True while an utterance started at or before `t` lasts.
   bool speaking(double t) const { return t < speaking_until_; }
-  /// The moves' counters and measurements so far.
-  const RobotSideMetrics& metrics() const { return metrics_; }
+  /// How its moves ended so far.
+  const RobotSideCounts& counts() const { return counts_; }
 
  private:
   void handle(const policies::Action& action, double t, RobotWorld& world);
@@ -111,7 +102,7 @@ class RobotSide {
   bool move_unreported_ = false;   // a move that ended in start(), reported after this tick's actions
   double speaking_until_ = -1.0;   // s since free play started
   bool speech_pending_result_ = false;
-  RobotSideMetrics metrics_;
+  RobotSideCounts counts_;
 };
 
 }  // namespace freeplay::runner
