@@ -98,7 +98,10 @@ void serve_command(const ServeCommandOptions& o) {
                                      {"p50_late_ms", timing.p50_late_ms},
                                      {"p99_late_ms", timing.p99_late_ms},
                                      {"max_late_ms", timing.max_late_ms}}}};
-  if (!result.aborted) summary["metrics"] = result.record["metrics"];
+  if (!result.aborted) {
+    summary["ended_by"] = result.record["ended_by"];
+    summary["metrics"] = result.record["metrics"];
+  }
   std::cout << summary.dump() << std::endl;
   if (result.aborted) fail_with(130);
 #else

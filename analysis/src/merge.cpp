@@ -4,6 +4,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
+#include <functional>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -40,8 +42,36 @@ std::string listing(const std::vector<std::string>& items, std::size_t limit = 1
 struct Input {
   fs::path dir;
   std::optional<nlohmann::json> manifest;
-  std::vector<nlohmann::json> records;
 };
+
+/// Up to 10 examples of a kind of problem and how many there were (memory does not grow with bad input).
+struct Examples {
+  std::vector<std::string> shown;
+  std::size_t count = 0;
+  void add(std::string item) {
+    if (shown.size() < 10) shown.push_back(std::move(item));
+    ++count;
+  }
+  std::string text() const {
+    auto out = fmt::format("{}", fmt::join(shown, ", "));
+    if (count > shown.size()) out += fmt::format(" … and {} more", count - shown.size());
+    return out;
+  }
+};
+
+bool same_bytes(const fs::path& a, const fs::path& b) {
+  if (fs::file_size(a) != fs::file_size(b)) return false;
+  std::ifstream x(a, std::ios::binary);
+  std::ifstream y(b, std::ios::binary);
+  std::array<char, 65536> bx{};
+  std::array<char, 65536> by{};
+  while (x && y) {
+    x.read(bx.data(), bx.size());
+    y.read(by.data(), by.size());
+    if (x.gcount() != y.gcount() || !std::equal(bx.begin(), bx.begin() + x.gcount(), by.begin())) return false;
+  }
+  return true;
+}
 
 ExpectedRun expected_from_manifest(const nlohmann::json& manifest, const fs::path& file) {
   ExpectedRun expected;
@@ -90,7 +120,6 @@ MergeReport merge_runs(const std::vector<fs::path>& inputs, const fs::path& out,
     }
     Input input;
     input.dir = dir;
-    input.records = runner::RunFolder(dir).records();
     if (fs::is_regular_file(dir / kRunManifestFile)) {
       try {
         input.manifest = nlohmann::json::parse(read_text(dir / kRunManifestFile));
@@ -184,80 +213,74 @@ MergeReport merge_runs(const std::vector<fs::path>& inputs, const fs::path& out,
                      "--suite", "the suite file the shards ran (with the same --set overrides)");
   }
 
-  // Every record: known variant and index, once, one configuration per variant.
+  // Every record, streamed from disk: known variant and index, once, one configuration per variant. Memory: the
+  // input that holds each expected episode (2 bytes per episode), never the records.
   std::map<std::string, std::size_t> variant_rank;
   for (std::size_t i = 0; i < expected.variants.size(); ++i) variant_rank[expected.variants[i].id] = i;
-  std::map<std::pair<std::string, int>, std::string> seen;
+  std::vector<std::vector<std::uint16_t>> seen_in(expected.variants.size());  // input + 1, 0 = not seen
+  for (std::size_t i = 0; i < expected.variants.size(); ++i) {
+    seen_in[i].assign(static_cast<std::size_t>(std::max(0, expected.variants[i].episodes)), 0);
+  }
+  if (runs.size() >= 0xFFFF) throw InputError("too many run folders to merge at once", "DIR", "fewer than 65 535");
   std::map<std::string, std::pair<std::uint64_t, std::string>> hash_of_variant;
   std::set<std::string> versions;
-  std::vector<std::string> duplicates;
-  std::vector<std::string> unknown;
-  std::vector<nlohmann::json> merged;
-  for (const auto& r : runs) {
-    for (const auto& record : r.records) {
+  Examples duplicates;
+  Examples unknown;
+  Examples mismatched;
+  int episodes = 0;
+  for (std::size_t input = 0; input < runs.size(); ++input) {
+    const auto& r = runs[input];
+    runner::RunFolder(r.dir).for_each_record([&](const nlohmann::json& record) {
       const auto variant = record.value("variant", std::string{});
       const int index = record.value("episode", -1);
       const auto name = fmt::format("{} #{}", variant, index);
       const auto rank = variant_rank.find(variant);
       if (rank == variant_rank.end() || index < 0 || index >= expected.variants[rank->second].episodes) {
-        unknown.push_back(fmt::format("{} (in '{}')", name, r.dir.string()));
-        continue;
+        unknown.add(fmt::format("{} (in '{}')", name, r.dir.string()));
+        return;
       }
-      const auto [it, inserted] = seen.emplace(std::make_pair(variant, index), r.dir.string());
-      if (!inserted) {
-        duplicates.push_back(fmt::format("{} (in '{}' and '{}')", name, it->second, r.dir.string()));
-        continue;
+      auto& seen = seen_in[rank->second][static_cast<std::size_t>(index)];
+      if (seen != 0) {
+        duplicates.add(fmt::format("{} (in '{}' and '{}')", name, runs[seen - 1U].dir.string(), r.dir.string()));
+        return;
       }
+      seen = static_cast<std::uint16_t>(input + 1);
+      ++episodes;
       const auto hash = record.value("config_hash", std::uint64_t{0});
       const auto& wanted = expected.variants[rank->second].config_hash;
       if (wanted && *wanted != hash) {
-        problem(fmt::format("{} in '{}' ran configuration {:016x}, the suite's is {:016x}", name, r.dir.string(), hash,
-                            *wanted),
-                "config_hash", "shards run with the same suite, overrides and program");
+        mismatched.add(fmt::format("{} in '{}' ran configuration {:016x}, the suite's is {:016x}", name,
+                                   r.dir.string(), hash, *wanted));
       }
       const auto [h, first_of_variant] = hash_of_variant.emplace(variant, std::make_pair(hash, r.dir.string()));
       if (!first_of_variant && h->second.first != hash) {
-        problem(fmt::format("variant '{}' ran two configurations: {:016x} in '{}' and {:016x} in '{}'", variant,
-                            h->second.first, h->second.second, hash, r.dir.string()),
-                "config_hash", "shards run with the same suite, overrides and program");
+        mismatched.add(fmt::format("variant '{}' ran two configurations: {:016x} in '{}' and {:016x} in '{}'",
+                                   variant, h->second.first, h->second.second, hash, r.dir.string()));
       }
       versions.insert(record.value("program_version", std::string{}));
-      merged.push_back(record);
-    }
+    });
   }
-  if (!duplicates.empty()) {
-    problem(fmt::format("{} episode(s) appear twice: {}", duplicates.size(), listing(duplicates)), "DIR",
+  if (mismatched.count > 0) {
+    problem(fmt::format("{} configuration mismatch(es): {}", mismatched.count, mismatched.text()), "config_hash",
+            "shards run with the same suite, overrides and program");
+  }
+  if (duplicates.count > 0) {
+    problem(fmt::format("{} episode(s) appear twice: {}", duplicates.count, duplicates.text()), "DIR",
             "disjoint shards (each --shard I/N once)");
   }
-  if (!unknown.empty()) {
-    problem(fmt::format("{} episode(s) are not part of the suite: {}", unknown.size(), listing(unknown)), "DIR",
+  if (unknown.count > 0) {
+    problem(fmt::format("{} episode(s) are not part of the suite: {}", unknown.count, unknown.text()), "DIR",
             "shards of this suite");
   }
-  std::vector<std::string> missing;
-  for (const auto& v : expected.variants) {
-    for (int i = 0; i < v.episodes; ++i) {
-      if (!seen.count({v.id, i})) missing.push_back(fmt::format("{} #{}", v.id, i));
+  Examples missing;
+  for (std::size_t v = 0; v < expected.variants.size(); ++v) {
+    for (std::size_t i = 0; i < seen_in[v].size(); ++i) {
+      if (seen_in[v][i] == 0) missing.add(fmt::format("{} #{}", expected.variants[v].id, i));
     }
   }
-  if (!missing.empty()) {
-    problem(fmt::format("{} episode(s) are missing: {}", missing.size(), listing(missing)), "DIR",
+  if (missing.count > 0) {
+    problem(fmt::format("{} episode(s) are missing: {}", missing.count, missing.text()), "DIR",
             "every shard, each finished (resume an unfinished shard with the same command)");
-  }
-
-  // Per-episode files: copied once; the same path in two inputs must hold the same bytes.
-  std::map<fs::path, fs::path> files;  // relative → source
-  for (const auto& r : runs) {
-    for (auto it = fs::recursive_directory_iterator(r.dir); it != fs::recursive_directory_iterator(); ++it) {
-      if (!it->is_regular_file()) continue;
-      const auto relative = fs::relative(it->path(), r.dir);
-      if (relative.parent_path().empty() && kRunLevelFiles.count(relative.string())) continue;
-      const auto [f, inserted] = files.emplace(relative, it->path());
-      if (!inserted && read_text(f->second) != read_text(it->path())) {
-        problem(fmt::format("'{}' differs between '{}' and '{}'", relative.string(), f->second.string(),
-                            it->path().string()),
-                "DIR", "disjoint shards");
-      }
-    }
   }
   problems.throw_if_any();
 
@@ -265,8 +288,7 @@ MergeReport merge_runs(const std::vector<fs::path>& inputs, const fs::path& out,
   MergeReport report;
   report.out = out;
   report.inputs = static_cast<int>(runs.size());
-  report.episodes = static_cast<int>(merged.size());
-  report.files = static_cast<int>(files.size());
+  report.episodes = episodes;
   if (versions.size() > 1) {
     report.warnings.push_back(fmt::format("the shards ran different program versions: {}",
                                           fmt::join(versions, ", ")));
@@ -275,16 +297,39 @@ MergeReport merge_runs(const std::vector<fs::path>& inputs, const fs::path& out,
   fs::remove_all(staging);
   fs::create_directories(staging);
   try {
-    std::string lines;
-    for (const auto& record : merged) lines += record.dump() + "\n";
-    write_file_atomically(staging / "episodes.jsonl", lines);
+    // Per-episode files: copied once, streamed (the staging folder is the index of what was copied); the same path
+    // in two inputs must hold the same bytes.
+    Examples differing;
+    for (const auto& r : runs) {
+      for (auto it = fs::recursive_directory_iterator(r.dir); it != fs::recursive_directory_iterator(); ++it) {
+        if (!it->is_regular_file()) continue;
+        const auto relative = fs::relative(it->path(), r.dir);
+        if (relative.parent_path().empty() && kRunLevelFiles.count(relative.string())) continue;
+        const auto target = staging / relative;
+        if (fs::exists(target)) {
+          if (!same_bytes(target, it->path())) {
+            differing.add(fmt::format("'{}' (in '{}')", relative.string(), it->path().string()));
+          }
+          continue;
+        }
+        fs::create_directories(target.parent_path());
+        fs::copy_file(it->path(), target);
+        ++report.files;
+      }
+    }
+    if (differing.count > 0) {
+      problem(fmt::format("{} per-episode file(s) differ between inputs: {}", differing.count, differing.text()),
+              "DIR", "disjoint shards");
+      problems.throw_if_any();
+    }
+    write_file_atomically(staging / "episodes.jsonl", [&](const std::function<void(std::string_view)>& write) {
+      for (const auto& r : runs) {
+        runner::RunFolder(r.dir).for_each_record([&](const nlohmann::json& record) { write(record.dump() + "\n"); });
+      }
+    });
     std::vector<std::string> order;
     for (const auto& v : expected.variants) order.push_back(v.id);
     runner::RunFolder(staging).finalize(order);  // the same order and bytes as a single-machine run
-    for (const auto& [relative, source] : files) {
-      fs::create_directories((staging / relative).parent_path());
-      fs::copy_file(source, staging / relative);
-    }
     if (with_manifest > 0) {
       auto manifest = *runs.front().manifest;
       if (manifest.contains("shard")) manifest["shard"] = {zero_based ? 0 : 1, 1};

@@ -31,24 +31,20 @@
 #include "freeplay/recording/robot_links.hpp"
 #include "freeplay/recording/ros_messages.hpp"
 #include "freeplay/recording/session_files.hpp"
+#include "freeplay/recording/session_videos.hpp"
 #include "message_builders.hpp"
 #include "freeplay/sim/sandtray.hpp"
 #include "freeplay/sim/screen.hpp"
+#include "freeplay/sim/markers.hpp"
 #include "freeplay/sim/zones.hpp"
 
 namespace freeplay::recording {
-
-SessionPaths session_paths(const std::filesystem::path& dir) {
-  return {dir, dir / "freeplay.bag", dir / "freeplay.bag.active", dir / "experiment.yaml",
-          dir / "freeplay.annotations.freeplay-sim.yaml", dir / "freeplay.bag.yaml"};
-}
 
 namespace {
 
 using detail::kCameraLinks;
 using detail::point;
 using detail::pose_of;
-using detail::rpy_quaternion;
 using detail::StaticLink;
 using detail::transform;
 using detail::yaw_quaternion;
@@ -105,6 +101,7 @@ struct BagRecorder::Impl {
   std::optional<double> freeplay_start;
   PinsoroCsv csv;           // the collated 30 Hz table of free play
   std::unique_ptr<PoseRecorder> poses;  // freeplay.poses.json
+  std::unique_ptr<SessionVideos> videos;  // video/camera_*_raw.mkv (when cameras render)
   std::vector<std::pair<std::string, std::unique_ptr<MicrophoneStream>>> microphones;  // topic → SR300 microphone
   std::uint64_t utterances = 0;
   PublisherClocks clocks;  // every real publisher's phase and jitter (seeded by the episode)
@@ -272,7 +269,7 @@ struct BagRecorder::Impl {
       put_tf("game/" + name, t, {{name, pose_of({touch.position.x(), touch.position.y(), 0.0}, Eigen::Quaterniond::Identity())}});
     }
     std::vector<std::pair<std::string, Eigen::Isometry3d>> links;  // sandtray_publisher: the URDF camera links
-    for (const auto& link : kCameraLinks) links.emplace_back(link.frame, pose_of(link.xyz, rpy_quaternion(link.rpy)));
+    for (const auto& link : kCameraLinks) links.emplace_back(link.frame, pose_of(link.xyz, link.rotation()));
     put_tf("sandtray_publisher", t, links);
     for (const auto& child : s.children) {  // the head trackers
       const Eigen::Vector3d direction = child.gaze_point - child.head;
@@ -303,46 +300,34 @@ struct BagRecorder::Impl {
     clear.header.frame_id = ros_string("/sandtray");
     clear.action = msg::Marker::DELETEALL;
     zones.markers.push_back(clear);
-    for (const auto& zone : tray.zones().zones()) {
-      msg::Marker m;
-      m.header = clear.header;
-      m.ns = ros_string("sandbox_zone_" + zone.colour);
-      m.id = zone.id;
-      m.type = msg::Marker::LINE_STRIP;
-      m.action = msg::Marker::ADD;
-      m.pose.orientation.w = 1.0;
-      m.scale.x = 0.005;
-      const auto rgb = sim::zone_marker_rgb(zone.colour);
-      m.color.r = static_cast<float>(rgb[0]) / 255.0F;
-      m.color.g = static_cast<float>(rgb[1]) / 255.0F;
-      m.color.b = static_cast<float>(rgb[2]) / 255.0F;
-      m.color.a = 1.0F;
-      for (const auto& v : zone.polygon) m.points.push_back(point(v.x(), v.y()));
-      if (!zone.polygon.empty()) m.points.push_back(point(zone.polygon.front().x(), zone.polygon.front().y()));
-      zones.markers.push_back(std::move(m));
-    }
+    for (const auto& zone : sim::zone_markers(tray)) zones.markers.push_back(line_marker(zone, clear.header.stamp));
     put(topics::kZones, zones_published, zones, true);
+  }
+
+  // A visualization_msgs/Marker LINE_STRIP of one of the game's line markers.
+  static msg::Marker line_marker(const sim::LineMarker& line, const ros::Time& stamp) {
+    msg::Marker m;
+    m.header.stamp = stamp;
+    m.header.frame_id = ros_string(line.frame);
+    m.ns = ros_string(line.ns);
+    m.id = line.id;
+    m.type = msg::Marker::LINE_STRIP;
+    m.action = msg::Marker::ADD;
+    m.pose.orientation.w = 1.0;
+    m.scale.x = line.width;
+    m.color.r = line.rgb[0];
+    m.color.g = line.rgb[1];
+    m.color.b = line.rgb[2];
+    m.color.a = 1.0F;
+    for (const auto& v : line.points) m.points.push_back(point(v[0], v[1]));
+    return m;
   }
 
   void write_footprints(double t, const sim::Sandtray& tray) {
     msg::MarkerArray footprints;  // FootprintsPublisher: one closed polygon per item, in the item's frame
     const double published = clocks.publish("footprints", t);
-    int marker_id = 0;
-    for (const auto& [name, polygon] : tray.published_footprints()) {
-      msg::Marker m;
-      m.header.stamp = ros_time(published);
-      m.header.frame_id = ros_string("/" + name);
-      m.ns = ros_string(name);
-      m.id = marker_id++;
-      m.type = msg::Marker::LINE_STRIP;
-      m.action = msg::Marker::ADD;
-      m.pose.orientation.w = 1.0;
-      m.scale.x = 0.002;
-      m.color.g = 1.0F;
-      m.color.a = 1.0F;
-      for (const auto& v : polygon) m.points.push_back(point(v.x(), v.y()));
-      if (!polygon.empty()) m.points.push_back(point(polygon.front().x(), polygon.front().y()));
-      footprints.markers.push_back(std::move(m));
+    for (const auto& item : sim::footprint_markers(tray)) {
+      footprints.markers.push_back(line_marker(item, ros_time(published)));
     }
     put(topics::kFootprints, published, footprints, true);
   }
@@ -480,6 +465,7 @@ void BagRecorder::begin(const runner::EpisodeInfo& info) {
   for (const auto& stale : {d.paths.bag, d.paths.active_bag, d.paths.annotations, d.paths.bag_yaml}) {
     std::filesystem::remove(stale, error);
   }
+  std::filesystem::remove_all(d.paths.dir / "video", error);  // an earlier, interrupted attempt's videos
   try {
     d.write_experiment(nullptr, false);
     d.bag.open(d.paths.active_bag.string(), rosbag::bagmode::Write);
@@ -497,6 +483,11 @@ void BagRecorder::begin(const runner::EpisodeInfo& info) {
                                                                                  fmt::format("freeplay_{}_audio", camera),
                                                                   splitmix64(d.seed ^ fnv1a64(camera))));
   }
+  std::map<std::string, double> rates_hz;
+  if (info.scenario != nullptr) {
+    for (const auto& camera : info.scenario->cameras) rates_hz[camera.name] = camera.rate_hz;
+  }
+  d.videos = std::make_unique<SessionVideos>(d.paths.dir, std::move(rates_hz));
   d.bag.get().setChunkThreshold(static_cast<std::uint32_t>(d.settings.chunk_kb) * 1024U);
   d.bag.get().setCompression(compression_of(d.settings.compression));
   d.open = true;
@@ -540,6 +531,7 @@ void BagRecorder::write(const stage::FramePack& frame) {
   auto& d = *impl_;
   if (!d.open) return;
   const auto names = camera_topics(frame.camera);
+  d.videos->write(frame.camera, frame.rgb);
   // The camera driver stamps each stream when it publishes it: colour and depth each with their own phase.
   const double t = d.clocks.publish(frame.camera + "/rgb", frame.stamp, kCameraMaxPhaseS);
   const double t_depth = d.clocks.publish(frame.camera + "/depth", frame.stamp, kCameraMaxPhaseS);
@@ -620,6 +612,7 @@ void BagRecorder::end(runner::EpisodeResult& result) {
   d.put(topics::kAnnotations, end_t, annotations, true);
   d.write_audio(end_t, runner::EpisodeSnapshot{}, true);
   d.close_bag();
+  d.videos->close();
   const double base = ros_time(d.freeplay_start.value_or(0.0)).toSec();
   write_file_atomically(d.paths.annotations,
                         agents::to_pinsoro_yaml(result.annotations, base,
@@ -645,6 +638,7 @@ void BagRecorder::abort() {
   } catch (const std::exception&) {  // the episode's own error is the one to report; the bag is closed
   }
   if (d.poses) d.poses->discard();
+  d.videos->discard();
   d.write_experiment(nullptr, false);
 }
 

@@ -2,11 +2,6 @@
 
 namespace freeplay::recording::detail {
 
-// The URDF joints sandtray → camera links (free-play-sandbox.md §2.4): xyz, rpy.
-const StaticLink kCameraLinks[3] = {{"camera_purple_link", {-0.108, 0.021, 0.035}, {0, -0.349, -0.785}},
-                                   {"camera_yellow_link", {-0.108, -0.377, 0.035}, {0, -0.349, 0.785}},
-                                   {"env_camera_link", {1.4, -0.15, 0.52}, {0, 0.29, 3.142}}};
-
 msg::Quaternion quaternion(const Eigen::Quaterniond& q) {
   msg::Quaternion out;
   out.x = q.x();
@@ -37,12 +32,6 @@ Eigen::Isometry3d pose_of(const Eigen::Vector3d& xyz, const Eigen::Quaterniond& 
 }
 
 Eigen::Quaterniond yaw_quaternion(double yaw) { return Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ())); }
-
-Eigen::Quaterniond rpy_quaternion(const Eigen::Vector3d& rpy) {
-  return Eigen::Quaterniond(Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()) *
-                            Eigen::AngleAxisd(rpy.y(), Eigen::Vector3d::UnitY()) *
-                            Eigen::AngleAxisd(rpy.x(), Eigen::Vector3d::UnitX()));
-}
 
 msg::Point point(double x, double y, double z) {
   msg::Point p;

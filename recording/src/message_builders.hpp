@@ -4,18 +4,15 @@
 #include <Eigen/Geometry>
 #include <string>
 
+#include "freeplay/core/sandtray_links.hpp"
 #include "freeplay/recording/ros_messages.hpp"
 
 namespace freeplay::recording::detail {
 
 /// A fixed URDF joint sandtray → link: xyz, rpy.
-struct StaticLink {
-  const char* frame;   ///< child frame
-  Eigen::Vector3d xyz; ///< translation (m)
-  Eigen::Vector3d rpy; ///< roll, pitch, yaw (rad)
-};
+using StaticLink = UrdfLink;
 /// The URDF joints sandtray → camera links (free-play-sandbox.md §2.4).
-extern const StaticLink kCameraLinks[3];
+inline const auto& kCameraLinks = kSandtrayCameraLinks;
 
 /// geometry_msgs/Quaternion of `q`.
 msg::Quaternion quaternion(const Eigen::Quaterniond& q);
@@ -26,8 +23,6 @@ msg::TransformStamped transform(const ros::Time& stamp, const std::string& paren
 Eigen::Isometry3d pose_of(const Eigen::Vector3d& xyz, const Eigen::Quaterniond& q);
 /// A rotation about z.
 Eigen::Quaterniond yaw_quaternion(double yaw);
-/// The rotation of URDF roll, pitch, yaw.
-Eigen::Quaterniond rpy_quaternion(const Eigen::Vector3d& rpy);
 /// geometry_msgs/Point.
 msg::Point point(double x, double y, double z = 0.0);
 

@@ -6,37 +6,24 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "freeplay/core/sandtray_links.hpp"
 #include "freeplay/planning/occupancy_grid.hpp"
 #include "freeplay/runner/sandtray_world.hpp"
 #include "freeplay/sim/screen.hpp"
-#include "freeplay/sim/zones.hpp"
+#include "freeplay/sim/markers.hpp"
 
 namespace freeplay::ros_live {
 
 namespace {
 
-struct UrdfLink {
-  const char* frame;
-  std::array<double, 3> xyz;
-  std::array<double, 3> rpy;
-};
-// sandtray.xacro joints (free-play-sandbox.md §2.4).
-const UrdfLink kCameraLinks[] = {{"camera_purple_link", {-0.108, 0.021, 0.035}, {0, -0.349, -0.785}},
-                                 {"camera_yellow_link", {-0.108, -0.377, 0.035}, {0, -0.349, 0.785}},
-                                 {"env_camera_link", {1.4, -0.15, 0.52}, {0, 0.29, 3.142}}};
-
-std::array<double, 4> rpy_rotation(const std::array<double, 3>& rpy) {
-  const Eigen::Quaterniond q = Eigen::AngleAxisd(rpy[2], Eigen::Vector3d::UnitZ()) *
-                               Eigen::AngleAxisd(rpy[1], Eigen::Vector3d::UnitY()) *
-                               Eigen::AngleAxisd(rpy[0], Eigen::Vector3d::UnitX());
-  return {q.x(), q.y(), q.z(), q.w()};
+ros_graph::Polyline polyline(sim::LineMarker m) {
+  return {std::move(m.frame), std::move(m.ns), m.id, std::move(m.points), m.rgb, m.width};
 }
 
-ros_graph::Polyline closed(const Polygon2& polygon) {
-  ros_graph::Polyline line;
-  for (const auto& v : polygon) line.points.push_back({v.x(), v.y()});
-  if (!polygon.empty()) line.points.push_back({polygon.front().x(), polygon.front().y()});
-  return line;
+std::vector<ros_graph::Polyline> polylines(std::vector<sim::LineMarker> markers) {
+  std::vector<ros_graph::Polyline> out;
+  for (auto& m : markers) out.push_back(polyline(std::move(m)));
+  return out;
 }
 
 }  // namespace
@@ -61,7 +48,10 @@ std::vector<ros_graph::Transform> game_frames(const sim::Sandtray& tray) {
 
 std::vector<ros_graph::Transform> camera_links() {
   std::vector<ros_graph::Transform> out;
-  for (const auto& link : kCameraLinks) out.push_back({"sandtray", link.frame, link.xyz, rpy_rotation(link.rpy)});
+  for (const auto& link : kSandtrayCameraLinks) {
+    const auto q = link.rotation();
+    out.push_back({"sandtray", link.frame, {link.xyz.x(), link.xyz.y(), link.xyz.z()}, {q.x(), q.y(), q.z(), q.w()}});
+  }
   return out;
 }
 
@@ -70,33 +60,10 @@ ros_graph::Transform arm_reach_frame(const runner::ReachDisc& reach) {
 }
 
 std::vector<ros_graph::Polyline> footprint_markers(const sim::Sandtray& tray) {
-  std::vector<ros_graph::Polyline> out;
-  int id = 0;
-  for (const auto& [name, polygon] : tray.published_footprints()) {
-    auto line = closed(polygon);
-    line.frame = "/" + name;
-    line.ns = name;
-    line.id = id++;
-    out.push_back(std::move(line));
-  }
-  return out;
+  return polylines(sim::footprint_markers(tray));
 }
 
-std::vector<ros_graph::Polyline> zone_markers(const sim::Sandtray& tray) {
-  std::vector<ros_graph::Polyline> out;
-  for (const auto& zone : tray.zones().zones()) {
-    auto line = closed(zone.polygon);
-    line.frame = "/sandtray";
-    line.ns = "sandbox_zone_" + zone.colour;
-    line.id = zone.id;
-    const auto rgb = sim::zone_marker_rgb(zone.colour);
-    line.rgb = {static_cast<float>(rgb[0]) / 255.F, static_cast<float>(rgb[1]) / 255.F,
-                static_cast<float>(rgb[2]) / 255.F};
-    line.width = 0.005;
-    out.push_back(std::move(line));
-  }
-  return out;
-}
+std::vector<ros_graph::Polyline> zone_markers(const sim::Sandtray& tray) { return polylines(sim::zone_markers(tray)); }
 
 ros_graph::Image background_image(const sim::Sandtray& tray) {
   const cv::Mat& bgr = tray.background();

@@ -15,6 +15,7 @@
 #include "freeplay/policies/play_policy.hpp"
 #include "freeplay/ros/graph.hpp"
 #include "freeplay/runner/episode.hpp"
+#include "freeplay/runner/robot_side.hpp"
 #include "freeplay/ros/graph_messages.hpp"
 
 namespace freeplay::ros_live {
@@ -23,7 +24,6 @@ namespace {
 
 constexpr double kTickS = 0.1;             // decision and /poses rate (10 Hz)
 constexpr double kTouchFreshS = 0.35;      // a touchN frame older than this is a lifted finger (the game sends 10 Hz)
-constexpr double kSpeechSPerChar = 0.075;  // speaking time per character before SpeechFinished (no TTS feedback)
 
 /// The sandtray as the graph shows it at one tick.
 struct GraphWorld {
@@ -96,61 +96,91 @@ std::vector<policies::ZoneObservation> zones_of(const ros_graph::RobotView& view
   return out;
 }
 
+// The graph as the robot side's world: `/poses` fake touches, speech, gaze and pointing targets go out on the graph.
+class GraphActuators final : public runner::RobotWorld {
+ public:
+  GraphActuators(ros_graph::RobotGraph& graph, RobotNodeStats& stats) : graph_(graph), stats_(stats) {}
+
+  /// The sandtray as the graph showed it at this tick.
+  void update(GraphWorld world) { world_ = std::move(world); }
+  const GraphWorld& world() const { return world_; }
+
+  planning::MoveWorld move_world() override { return ros_live::move_world(world_); }
+  void move_started(const policies::MoveItem& move, bool running, double /*t*/) override {
+    spdlog::info("move {} to ({:.3f}, {:.3f}){}", move.item, move.target.x(), move.target.y(),
+                 running ? "" : ": not started");
+  }
+  void finger(const planning::TimedPose& pose, double /*t*/) override {
+    graph_.finger(pose.position.x(), pose.position.y());
+    ++stats_.poses_sent;
+  }
+  void move_ended(const policies::MoveItem& move, planning::MoveStatus status, nlohmann::json fields,
+                  double /*t*/) override {
+    if (status == planning::MoveStatus::Succeeded || status == planning::MoveStatus::Preempted) return;
+    spdlog::warn("move {} failed: {}", move.item, fields.value("reason", ""));
+  }
+  void look_at(const policies::LookAt& look, double /*t*/) override {
+    // A child's face: where the seat puts it (the robot node has no head tracker of its own).
+    const Eigen::Vector3d p = look.child ? runner::seat_face(*look.child) : look.point.value_or(Eigen::Vector3d::Zero());
+    if (look.child || look.point) graph_.look_at(p.x(), p.y(), p.z());
+  }
+  void point_at(const Vec2& point, double /*t*/) override { graph_.point_at(point.x(), point.y()); }
+  void say(const std::string& text, const std::string& /*to*/, double /*duration_s*/, double /*t*/) override {
+    graph_.speech(text);
+  }
+  void cancel(double /*t*/) override { spdlog::info("move cancelled"); }
+
+ private:
+  ros_graph::RobotGraph& graph_;
+  RobotNodeStats& stats_;
+  GraphWorld world_;
+};
+
 class RobotNode {
  public:
   explicit RobotNode(const RobotNodeOptions& options)
       : options_(options), catalogue_(*runner::SharedModels::shipped().catalogue),
-        policy_(policies::make_policy(options.policy, options.policy_params)),
-        executor_(std::shared_ptr<const planning::MotionPlanner>(planning::make_planner(options.planner)),
-                  executor_config(options)),
-        rng_(options.seed) {
-    policies::PolicyContext context;
-    for (const auto& item : catalogue_.items()) context.item_names.push_back(item.name);
-    policy_->reset(context, Rng(SeedSequence(options.seed).seed_for("policy")));
-  }
+        robot_(make_policy(options, catalogue_), make_executor(options), Rng(options.seed), runner::BadMove::Report) {}
 
   RobotNodeStats run(const std::atomic<bool>& stop) {
     ros_graph::RobotGraph graph;
-    graph_ = &graph;
+    GraphActuators actuators(graph, stats_);
     using clock = std::chrono::steady_clock;
     const auto start = clock::now();
     for (long tick = 0;; ++tick) {
       const double t = static_cast<double>(tick) * kTickS;
       if (stop.load() || !graph.ok() || (options_.duration_s > 0 && t >= options_.duration_s)) break;
       std::this_thread::sleep_until(start + std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>(t)));
-      step(t, graph.take());
+      graph.maintain();
+      const auto view = graph.take();
+      actuators.update(world_of(view, catalogue_, ros_graph::wall_now()));
+      if (actuators.world().items.empty()) continue;  // nothing to decide on before the game's TF arrives
+      ++stats_.decisions;
+      auto o = observe(t, view, actuators.world());
+      robot_.step(t, o, actuators);
     }
-    graph_ = nullptr;
+    const auto& m = robot_.counts();
+    stats_.moves_started = m.moves_started;
+    stats_.moves_succeeded = m.moves_succeeded;
+    stats_.moves_failed = m.moves_failed;
     return stats_;
   }
 
  private:
-  static planning::MoveExecutorConfig executor_config(const RobotNodeOptions& o) {
-    planning::MoveExecutorConfig config;
-    config.time_budget_s = o.planner_budget_s;
-    return config;
+  static std::unique_ptr<policies::PlayPolicy> make_policy(const RobotNodeOptions& o,
+                                                           const sim::ItemCatalogue& catalogue) {
+    auto policy = policies::make_policy(o.policy, o.policy_params);
+    policies::PolicyContext context;
+    for (const auto& item : catalogue.items()) context.item_names.push_back(item.name);
+    policy->reset(context, Rng(SeedSequence(o.seed).seed_for("policy")));
+    return policy;
   }
 
-  void step(double t, const ros_graph::RobotView& view) {
-    const auto world = world_of(view, catalogue_, ros_graph::wall_now());
-    const auto move = move_world(world);
-    if (!world.items.empty()) {  // nothing to decide on before the game's TF arrives
-      ++stats_.decisions;
-      for (const auto& action : policy_->decide(observe(t, view, world))) handle(action, t, move);
-    }
-    if (executor_.status() == planning::MoveStatus::Running) {
-      planning::MoveOutputs outputs;
-      outputs.finger = [this](const planning::TimedPose& pose) {
-        graph_->finger(pose.position.x(), pose.position.y());
-        ++stats_.poses_sent;
-      };
-      executor_.step(kTickS, move, outputs);
-      if (executor_.status() != planning::MoveStatus::Running) finish_move();
-    }
-    if (speaking_until_ >= 0 && t >= speaking_until_) {
-      speaking_until_ = -1;
-      policy_->on_result({policies::ActionResult::Kind::SpeechFinished, "", ""});
-    }
+  static std::unique_ptr<planning::MoveExecutor> make_executor(const RobotNodeOptions& o) {
+    planning::MoveExecutorConfig config;
+    config.time_budget_s = o.planner_budget_s;
+    return std::make_unique<planning::MoveExecutor>(
+        std::shared_ptr<const planning::MotionPlanner>(planning::make_planner(o.planner)), config);
   }
 
   policies::Observation observe(double t, const ros_graph::RobotView& view, const GraphWorld& world) const {
@@ -161,13 +191,13 @@ class RobotNode {
       item.name = name;
       item.pose = pose;
       item.touched_by_child = world.touched(name);
-      item.held_by_robot = executor_.status() == planning::MoveStatus::Running && current_item_ == name;
+      item.held_by_robot = robot_.moving() && robot_.current_item() == name;
       o.items.push_back(std::move(item));
     }
     o.zones = zones_of(view);
     for (const auto& [n, p] : world.fingers) o.touches.push_back({n, p});
     o.interaction_events = view.interaction_events;
-    if (policy_->perceives_children()) {  // face counts as the 2017 gazr nodes published them
+    if (robot_.perceives_children()) {  // face counts as the 2017 gazr nodes published them
       const char* seats[] = {"purple", "yellow"};
       for (std::size_t i = 0; i < 2; ++i) {
         if (view.faces[i] < 0) continue;
@@ -182,67 +212,13 @@ class RobotNode {
       o.self.arm_reach_centre = {(*world.arm_reach)[0], (*world.arm_reach)[1]};
       o.self.arm_reach_radius = (*world.arm_reach)[2];
     }
-    o.self.moving_item = executor_.status() == planning::MoveStatus::Running;
-    o.self.current_item = current_item_;
-    o.self.speaking = speaking_until_ >= 0;
+    o.self.speaking = robot_.speaking(t);
     return o;
-  }
-
-  void handle(const policies::Action& action, double t, const planning::MoveWorld& move) {
-    if (const auto* m = std::get_if<policies::MoveItem>(&action)) {
-      current_item_ = m->item;
-      ++stats_.moves_started;
-      try {
-        executor_.start({m->item, m->target}, move, rng_);
-      } catch (const InputError& e) {
-        spdlog::warn("policy '{}' asked for a bad move: {}", policy_->name(), e.what());
-        ++stats_.moves_failed;
-        policy_->on_result({policies::ActionResult::Kind::MoveFailed, m->item, e.what()});
-        return;
-      }
-      spdlog::info("move {} to ({:.3f}, {:.3f})", m->item, m->target.x(), m->target.y());
-      if (executor_.status() != planning::MoveStatus::Running) finish_move();
-    } else if (const auto* look = std::get_if<policies::LookAt>(&action)) {
-      if (look->point) graph_->look_at(look->point->x(), look->point->y(), look->point->z());
-    } else if (const auto* point = std::get_if<policies::PointAt>(&action)) {
-      graph_->point_at(point->point.x(), point->point.y());
-    } else if (const auto* say = std::get_if<policies::Say>(&action)) {
-      graph_->speech(say->text);
-      speaking_until_ = t + kSpeechSPerChar * static_cast<double>(say->text.size());
-    } else if (std::holds_alternative<policies::CancelMove>(action)) {
-      executor_.cancel();
-      if (executor_.status() == planning::MoveStatus::Preempted) finish_move();
-    }
-  }
-
-  void finish_move() {
-    const auto& outcome = executor_.current();
-    policies::ActionResult result;
-    result.item = current_item_;
-    switch (outcome.status) {
-      case planning::MoveStatus::Succeeded:
-        result.kind = policies::ActionResult::Kind::MoveSucceeded;
-        ++stats_.moves_succeeded;
-        break;
-      case planning::MoveStatus::Preempted: result.kind = policies::ActionResult::Kind::MoveCancelled; break;
-      default:
-        result.kind = policies::ActionResult::Kind::MoveFailed;
-        result.reason = outcome.reason();
-        ++stats_.moves_failed;
-        spdlog::warn("move {} failed: {}", current_item_, outcome.reason());
-        break;
-    }
-    policy_->on_result(result);
   }
 
   RobotNodeOptions options_;
   const sim::ItemCatalogue& catalogue_;
-  std::unique_ptr<policies::PlayPolicy> policy_;
-  planning::MoveExecutor executor_;
-  Rng rng_;
-  ros_graph::RobotGraph* graph_ = nullptr;
-  std::string current_item_;
-  double speaking_until_ = -1.0;
+  runner::RobotSide robot_;
   RobotNodeStats stats_;
 };
 

@@ -7,13 +7,16 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <set>
 #include <stdexcept>
 #include <thread>
 
 #include "freeplay/core/rng.hpp"
 #include "freeplay/planning/move_executor.hpp"
 #include "freeplay/planning/plan.hpp"
+#include "freeplay/recording/camera_topics.hpp"
 #include "freeplay/ros/graph.hpp"
+#include "freeplay/runner/camera_rig.hpp"
 #include "freeplay/runner/sandtray_world.hpp"
 #include "freeplay/runner/scenario.hpp"
 #include "freeplay/sim/screen.hpp"
@@ -46,6 +49,7 @@ class LivePublisher final : public runner::EpisodeObserver {
   void observe(const runner::EpisodeSnapshot& s) override {
     const auto due = pace(s.t);
     auto& g = *live_.graph;
+    g.maintain();
     const double stamp = live_.stamp(s.t);
     g.clock(stamp);
     auto frames = game_frames(*s.tray);
@@ -56,24 +60,8 @@ class LivePublisher final : public runner::EpisodeObserver {
     }
     g.tf(stamp, frames);
     lateness_ms_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - due).count());
-    if (localisation_ != nullptr) {  // the simulated NAO's sandtray_localisation node: its own TF message
-      std::vector<ros_graph::Transform> localised;
-      for (const auto& line : localisation_->observe(s, localised)) g.speech(line);
-      if (!localised.empty()) g.tf(stamp, localised);
-    }
-    if (!footprints_sent_) {
-      g.footprints(stamp, footprint_markers(*s.tray));
-      footprints_sent_ = true;
-    }
-    if (s.tray->background_version() != background_version_ && s.t - background_t_ >= kBackgroundPeriodS - 1e-9) {
-      background_version_ = s.tray->background_version();
-      background_t_ = s.t;
-      g.background(stamp, background_image(*s.tray));
-      g.zones(stamp, zone_markers(*s.tray));
-    }
-    if (tick_++ % kMapEveryTicks == 0) g.map(stamp, occupancy_map(*s.tray));
-    for (const auto& e : s.new_events) publish_event(e);
-    if (robot_ != nullptr) serve_plans(*robot_, *s.tray);
+    last_t_ = s.t;
+    // The periodic topics first, the expensive latched ones (background PNG, zones) after them.
     if (s.robot != nullptr) {
       g.joint_states(stamp, {s.robot->joint_names, s.robot->positions, s.robot->velocities, s.robot->efforts});
       if (sim_robot_ && s.robot->finger) {  // our in-process move_sandbox_items streaming /poses
@@ -84,6 +72,19 @@ class LivePublisher final : public runner::EpisodeObserver {
         trajectory_.clear();
       }
     }
+    if (tick_++ % kMapEveryTicks == 0) g.map(stamp, occupancy_map(*s.tray));
+    for (const auto& e : s.new_events) publish_event(e);
+    if (!footprints_sent_) {
+      g.footprints(stamp, footprint_markers(*s.tray));
+      footprints_sent_ = true;
+    }
+    if (s.tray->background_version() != background_version_ && s.t - background_t_ >= kBackgroundPeriodS - 1e-9) {
+      background_version_ = s.tray->background_version();
+      background_t_ = s.t;
+      g.background(stamp, background_image(*s.tray));
+      g.zones(stamp, zone_markers(*s.tray));
+    }
+    if (robot_ != nullptr) serve_plans(*robot_, *s.tray);
     if (s.stage != "freeplay") {
       for (const auto& p : g.take_poses()) {  // as the game: poses are ignored while the sandbox is hidden
         spdlog::debug("/poses from {} ignored outside free play", p.publisher);
@@ -91,9 +92,10 @@ class LivePublisher final : public runner::EpisodeObserver {
       g.take_look_at();  // the external robot acts in free play only
       g.take_point_at();
     }
-    for (const auto& name : g.take_signals()) {
-      if (localisation_ != nullptr && localisation_->on_signal(name, s.t)) continue;
-      spdlog::info("received sandtray/signals/{} (the served protocol drives the game's stages; not applied)", name);
+    if (localisation_ != nullptr) {  // the simulated NAO's sandtray_localisation node: its own TF message, last
+      std::vector<ros_graph::Transform> localised;
+      for (const auto& line : localisation_->observe(s, localised)) g.speech(line);
+      if (!localised.empty()) g.tf(stamp, localised);
     }
   }
 
@@ -102,6 +104,9 @@ class LivePublisher final : public runner::EpisodeObserver {
 
   /// Runs the marker display and the NAO's localisation node on `robot_localising` (child-robot episodes).
   void set_localisation(ServedLocalisation* localisation) { localisation_ = localisation; }
+
+  /// Sandtray time of the last tick published.
+  double last_t() const { return last_t_; }
 
   /// Sets the arm-reach disc published as the `arm_reach` frame.
   void set_reach(const runner::ReachDisc& reach) { reach_ = reach; }
@@ -137,10 +142,14 @@ class LivePublisher final : public runner::EpisodeObserver {
     auto& g = *live_.graph;
     if (e.type == "interaction_event") g.interaction_event(e.data.value("message", ""));
     if (e.type == "say" && e.source == "robot") g.speech(e.data.value("text", ""));
+    if (e.source == "protocol" && e.type == "signal_received") received_.insert(e.data.value("name", ""));
     if (e.source == "protocol" && e.type == "stage") {
       static const std::map<std::string, std::string> kSignals = {
           {"tutorial", "start_tutorial"}, {"freeplay", "start_freeplay"}, {"debriefing", "blank_interface"}};
-      if (const auto it = kSignals.find(e.data.value("stage", "")); it != kSignals.end()) g.signal(it->second);
+      if (const auto it = kSignals.find(e.data.value("stage", "")); it != kSignals.end()) {
+        // A stage another node signalled is not signalled again (the game never echoes a signal).
+        if (received_.erase(it->second) == 0) g.signal(it->second);
+      }
     }
   }
 
@@ -150,6 +159,7 @@ class LivePublisher final : public runner::EpisodeObserver {
   std::optional<runner::ReachDisc> reach_;
   GraphRobot* robot_ = nullptr;
   ServedLocalisation* localisation_ = nullptr;
+  double last_t_ = 0.0;
   std::optional<std::chrono::steady_clock::time_point> start_;
   double t0_ = 0.0;
   bool footprints_sent_ = false;
@@ -158,6 +168,61 @@ class LivePublisher final : public runner::EpisodeObserver {
   long tick_ = 0;
   std::vector<std::array<double, 2>> trajectory_;
   std::vector<double> lateness_ms_;
+  std::set<std::string> received_;  // stage signals received from the graph, not to be echoed
+};
+
+/// The scenario's cameras rendered by the runner's CameraRig, published live under their drivers' topics (colour
+/// only; depth stays in recordings).
+class LiveCameras final : public runner::FrameSink {
+ public:
+  LiveCameras(Live& live, int jpeg_quality) : live_(live), jpeg_quality_(jpeg_quality) {}
+
+  void write(const stage::FramePack& frame) override {
+    if (frame.rgb.empty()) return;
+    const auto topics = recording::camera_topics(frame.camera);
+    ros_graph::CameraFrame out;
+    out.image_topic = topics.rgb_image;
+    out.info_topic = topics.rgb_info;
+    out.frame_id = topics.rgb_frame;
+    out.format = topics.rgb_format;
+    out.jpeg = recording::encode_jpeg(frame.rgb, jpeg_quality_);
+    out.width = frame.rgb.cols;
+    out.height = frame.rgb.rows;
+    out.K = {frame.K.fx, frame.K.fy, frame.K.cx, frame.K.cy};
+    live_.graph->camera(live_.stamp(frame.stamp), out);
+  }
+
+ private:
+  Live& live_;
+  int jpeg_quality_;
+};
+
+/// `sandtray/signals/*` from other nodes, for the episode to apply (the game's own signals: see sim::Signal); `robot_localising` goes to the
+/// NAO's localisation node.
+class GraphSignals final : public runner::SignalSource {
+ public:
+  GraphSignals(ros_graph::SandtrayGraph& graph, const LivePublisher& publisher, ServedLocalisation* localisation)
+      : graph_(graph), publisher_(publisher), localisation_(localisation) {}
+
+  std::vector<sim::Signal> take() override {
+    std::vector<sim::Signal> out;
+    for (const auto& name : graph_.take_signals()) {
+      if (localisation_ != nullptr && localisation_->on_signal(name, publisher_.last_t())) {
+        spdlog::info("received sandtray/signals/{}: the marker field and the NAO's localisation", name);
+      } else if (const auto signal = sim::signal_from_name(name)) {
+        spdlog::info("received sandtray/signals/{}: applied", name);
+        out.push_back(*signal);
+      } else {
+        spdlog::info("received sandtray/signals/{}: not simulated by the game", name);
+      }
+    }
+    return out;
+  }
+
+ private:
+  ros_graph::SandtrayGraph& graph_;
+  const LivePublisher& publisher_;
+  ServedLocalisation* localisation_;
 };
 
 /// `--robot external`: the finger follows `/poses` from the graph, and the `move_sandbox_items` action and
@@ -310,9 +375,15 @@ runner::EpisodeResult serve(const runner::Scenario& scenario, std::uint64_t seed
   }
   runner::EpisodeObservers observers;
   observers.push_back(std::make_unique<PublisherRef>(publisher));
+  LiveCameras cameras(live, scenario.recording.jpeg_quality);
+  if (!scenario.cameras.empty()) {  // rendered after the tick's topics went out, at each camera's own rate
+    observers.push_back(std::make_unique<runner::CameraRig>(
+        scenario, runner::renderer_options(scenario.rendering), std::vector<runner::FrameSink*>{&cameras}));
+  }
   const runner::EpisodeInfo info{&scenario, "serve", seed};
+  GraphSignals signals(graph, publisher, localisation.get());
   auto result = runner::run_episode(scenario, seed, runner::SharedModels::shipped(), stop, observers, info, nullptr,
-                                    robot.get());
+                                    robot.get(), &signals);
   if (timing != nullptr) *timing = publisher.timing();
   return result;
 }

@@ -22,8 +22,6 @@ namespace freeplay::runner {
 namespace {
 constexpr const char* kEpisodesFile = "episodes.jsonl";
 
-std::string finished_key(const std::string& variant, int index) { return fmt::format("{}\n{}", variant, index); }
-
 /// Calls `visit(line, offset)` for every complete line of `path`; returns the bytes up to the last good line and
 /// whether a torn or unparsable last line stopped the scan.
 template <typename Visit>
@@ -51,8 +49,7 @@ RunFolder::RunFolder(std::filesystem::path dir) : dir_(std::move(dir)) {
   const auto [good_bytes, dropped] = scan_lines(path, [&](const std::string& line, std::uint64_t) {
     try {
       const auto record = nlohmann::json::parse(line);
-      finished_.insert_or_assign(finished_key(record.value("variant", ""), record.value("episode", -1)),
-                                 record.value("config_hash", std::uint64_t{0}));
+      mark_finished(record.value("variant", ""), record.value("episode", -1), record.value("config_hash", std::uint64_t{0}));
       ++records_;
       return true;
     } catch (const nlohmann::json::exception&) {
@@ -65,9 +62,14 @@ RunFolder::RunFolder(std::filesystem::path dir) : dir_(std::move(dir)) {
 
 bool RunFolder::finished(const std::string& variant, int index, std::uint64_t config_hash) const {
   std::lock_guard lock(mutex_);
-  const auto it = finished_.find(finished_key(variant, index));
-  if (it == finished_.end()) return false;
-  if (it->second != config_hash) {
+  const auto it = finished_.find(variant);
+  if (it == finished_.end() || index < 0 || static_cast<std::size_t>(index) >= it->second.done.size() ||
+      !it->second.done[static_cast<std::size_t>(index)]) {
+    return false;
+  }
+  const auto other = it->second.other_hashes.find(index);
+  const auto hash = other != it->second.other_hashes.end() ? other->second : it->second.config_hash;
+  if (hash != config_hash) {
     throw InputError(fmt::format("this run folder already holds episode {} of '{}' from a different "
                                  "configuration; resume only with the same scenario and overrides",
                                  index, variant),
@@ -86,9 +88,19 @@ void RunFolder::append(const nlohmann::json& record) {
   const bool ok = n == static_cast<ssize_t>(line.size()) && ::fsync(fd) == 0;
   ::close(fd);
   if (!ok) throw std::runtime_error(fmt::format("cannot append to {}: {}", path.string(), std::strerror(errno)));
-  finished_.insert_or_assign(finished_key(record.value("variant", ""), record.value("episode", -1)),
-                             record.value("config_hash", std::uint64_t{0}));
+  mark_finished(record.value("variant", ""), record.value("episode", -1), record.value("config_hash", std::uint64_t{0}));
   ++records_;
+}
+
+void RunFolder::mark_finished(const std::string& variant, int index, std::uint64_t config_hash) {
+  if (index < 0) return;
+  const auto [it, first] = finished_.try_emplace(variant);
+  auto& f = it->second;
+  if (first) f.config_hash = config_hash;
+  const auto i = static_cast<std::size_t>(index);
+  if (i >= f.done.size()) f.done.resize(i + 1);
+  f.done[i] = true;
+  if (config_hash != f.config_hash) f.other_hashes[index] = config_hash; else f.other_hashes.erase(index);
 }
 
 void RunFolder::for_each_record(const std::function<void(const nlohmann::json&)>& visit) const {

@@ -33,6 +33,46 @@ std::map<std::string, double> flatten_numbers(const nlohmann::json& value, const
   return out;
 }
 
+namespace {
+constexpr std::array<double, 3> kStillPlayingMin = {10.0, 20.0, 30.0};
+}  // namespace
+
+void MetricSample::add(double value) {
+  if (std::isnan(value)) return;
+  ++n_;
+  const double delta = value - mean_;
+  mean_ += delta / static_cast<double>(n_);
+  m2_ += delta * (value - mean_);
+  if (kept_.size() < kBootstrapMaxValues) {
+    kept_.push_back(value);
+    return;
+  }
+  // Algorithm R: the n-th value replaces a random kept one with probability kept/n.
+  rng_ += 0x9e3779b97f4a7c15ULL;
+  std::uint64_t z = rng_;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  z ^= z >> 31;
+  const auto slot = z % n_;
+  if (slot < kept_.size()) kept_[slot] = value;
+}
+
+Summary MetricSample::summary(std::uint64_t seed, double divisor) const {
+  std::vector<double> scaled = kept_;
+  if (divisor != 1.0) {
+    for (auto& v : scaled) v /= divisor;
+  }
+  if (n_ <= kBootstrapMaxValues) return summarize(scaled, seed);
+  Summary s;
+  s.n = static_cast<int>(n_);
+  s.mean = mean_ / divisor;
+  s.sd = std::sqrt(m2_ / static_cast<double>(n_ - 1)) / divisor;
+  s.median = median(scaled);
+  const double half = 1.959963984540054 * s.sd / std::sqrt(static_cast<double>(n_));
+  s.ci95 = {s.mean - half, s.mean + half};
+  return s;
+}
+
 RunSummarizer::RunSummarizer(const std::vector<std::string>& variant_order) {
   for (const auto& variant : variant_order) {
     if (index_.contains(variant)) continue;
@@ -44,25 +84,31 @@ RunSummarizer::RunSummarizer(const std::vector<std::string>& variant_order) {
 void RunSummarizer::add(const nlohmann::json& r) {
   const auto it = index_.find(r.value("variant", ""));
   if (it == index_.end()) return;
-  auto& [s, values] = variants_[it->second];
-  ++s.episodes;
-  s.condition = r.value("condition", "");
-  s.policy = r.value("policy", "");
+  auto& v = variants_[it->second];
+  ++v.summary.episodes;
+  v.summary.condition = r.value("condition", "");
+  v.summary.policy = r.value("policy", "");
   const double duration = r.value("duration_s", std::nan(""));
-  s.durations_s.push_back(duration);
-  values["duration_s"].push_back(duration);
-  for (const auto& [key, v] : flatten_numbers(r.value("metrics", nlohmann::json::object()), "metrics")) {
-    values[key].push_back(v);
+  v.values["duration_s"].add(duration);
+  for (std::size_t i = 0; i < kStillPlayingMin.size(); ++i) {
+    if (duration / 60.0 >= kStillPlayingMin[i]) ++v.still_playing[i];
+  }
+  for (const auto& [key, value] : flatten_numbers(r.value("metrics", nlohmann::json::object()), "metrics")) {
+    v.values[key].add(value);
   }
 }
 
 std::vector<VariantSummary> RunSummarizer::finish() const {
   std::vector<VariantSummary> out;
-  for (const auto& [summary, values] : variants_) {
+  for (const auto& [summary, values, still_playing] : variants_) {
     if (summary.episodes == 0) continue;
     auto s = summary;
     std::uint64_t seed = 1;
-    for (const auto& [metric, v] : values) s.metrics.push_back({metric, summarize(v, seed++)});
+    for (const auto& [metric, v] : values) s.metrics.push_back({metric, v.summary(seed++)});
+    s.duration_min = values.at("duration_s").summary(7, 60.0);
+    for (std::size_t i = 0; i < still_playing.size(); ++i) {
+      s.still_playing[i] = static_cast<double>(still_playing[i]) / static_cast<double>(summary.episodes);
+    }
     out.push_back(std::move(s));
   }
   return out;
@@ -110,15 +156,13 @@ std::string summary_markdown(const std::vector<VariantSummary>& summaries, const
          " PInSoRo mean (SD) | PInSoRo ≥10/20/30 |\n";
   out += "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& s : summaries) {
-    std::vector<double> minutes;
-    for (const double d : s.durations_s) minutes.push_back(d / 60.0);
-    const auto stats = summarize(minutes, 7);
+    const auto& stats = s.duration_min;
     const auto* ref = pinsoro_durations(s.condition);
     const bool asocial_reference = ref != nullptr && (s.condition == "child-child" || s.policy == "asocial");
     out += fmt::format("| {} | {} | {} | {} | {:.2f} [{:.2f}, {:.2f}] | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {} | {} |\n",
                        s.variant, s.condition, s.policy.empty() ? "–" : s.policy, stats.n, stats.mean,
-                       stats.ci95.low, stats.ci95.high, stats.sd, stats.median, fraction_at_least(minutes, 10),
-                       fraction_at_least(minutes, 20), fraction_at_least(minutes, 30),
+                       stats.ci95.low, stats.ci95.high, stats.sd, stats.median, s.still_playing[0], s.still_playing[1],
+                       s.still_playing[2],
                        asocial_reference ? fmt::format("{:.2f} ({:.2f})", ref->mean_min, ref->sd_min) : "–",
                        asocial_reference ? fmt::format("{:.2f}/{:.2f}/{:.2f}", ref->survival_10, ref->survival_20,
                                                        ref->survival_30)

@@ -11,6 +11,7 @@
 #include "freeplay/core/assets.hpp"
 #include "freeplay/core/atomic_file.hpp"
 #include "freeplay/core/error.hpp"
+#include "freeplay/core/sandtray_links.hpp"
 
 namespace freeplay::stage {
 namespace {
@@ -30,15 +31,6 @@ constexpr std::array<ChildRow, 5> kChildTable = {{{4, 101.8, 57.5, 47.0, 35.6, 2
                                                   {7, 121.9, 67.0, 56.5, 41.6, 26.2, 21.9, 17.7, 13.2, 5.9},
                                                   {8, 127.9, 69.7, 59.2, 43.2, 27.5, 23.0, 18.6, 13.8, 6.1}}};
 
-// Real camera links in `sandtray` (nao-and-setup.md §3.2): xyz + URDF rpy.
-struct LinkPose {
-  const char* name;
-  Vector3d xyz;
-  Vector3d rpy;
-};
-const std::array<LinkPose, 3> kCameraLinks = {{{"camera_purple", {-0.108, 0.021, 0.035}, {0, -0.349, -0.785}},
-                                                {"camera_yellow", {-0.108, -0.377, 0.035}, {0, -0.349, 0.785}},
-                                                {"env_camera", {1.400, -0.150, 0.520}, {0, 0.29, 3.142}}}};
 
 // SR300 colour at qHD with the PInSoRo calibration; depth 640×480 with fx ≈ 475 (§2).
 const CameraIntrinsics kSr300Color{960, 540, 697.811, 697.811, 479.047, 261.227};
@@ -59,8 +51,10 @@ Matrix3d rpy_matrix(const Vector3d& rpy) {
 
 std::string v3(const Vector3d& v) { return fmt::format("{:.6g} {:.6g} {:.6g}", v.x(), v.y(), v.z()); }
 
-// MJCF camera (looks along -z, +y up) for a URDF link whose x axis looks forward.
-std::string camera_xml(const LinkPose& link) {
+// MJCF camera (looks along -z, +y up) for a URDF link whose x axis looks forward; named without "_link".
+std::string camera_xml(const UrdfLink& link) {
+  const std::string frame = link.frame;
+  const std::string name = frame.substr(0, frame.rfind("_link"));
   const Matrix3d r = rpy_matrix(link.rpy);
   const Vector3d x_cam = -r.col(1);
   const Vector3d y_cam = r.col(2);
@@ -70,7 +64,7 @@ std::string camera_xml(const LinkPose& link) {
       "    <camera name=\"{0}\" pos=\"{1}\" xyaxes=\"{2} {3}\" fovy=\"{4:.4f}\"/>\n"
       "    <geom name=\"{0}_housing\" type=\"box\" size=\"0.02 0.045 0.012\" pos=\"{5}\" xyaxes=\"{6} {7}\" "
       "material=\"device\"/>\n",
-      link.name, v3(link.xyz), v3(x_cam), v3(y_cam), fovy, v3(housing), v3(r.col(0)), v3(r.col(1)));
+      name, v3(link.xyz), v3(x_cam), v3(y_cam), fovy, v3(housing), v3(r.col(0)), v3(r.col(1)));
 }
 
 std::string box_xml(const std::string& name, double x0, double x1, double y0, double y1, double z0, double z1,
@@ -342,7 +336,7 @@ StageModel::StageModel(const StageConfig& config) : config_(config) {
   }
 
   std::string cameras;
-  for (const auto& link : kCameraLinks) cameras += camera_xml(link);
+  for (const auto& link : kSandtrayCameraLinks) cameras += camera_xml(link);
   std::string children = child_xml(ChildRole::purple, config);
   if (config.scene == SceneKind::child_child) children += child_xml(ChildRole::yellow, config);
 

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <thread>
 #include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
 
 #include "freeplay/core/error.hpp"
 #include "freeplay/recording/bag_recorder.hpp"
@@ -18,6 +19,7 @@
 #include "freeplay/agents/labels.hpp"
 #include "freeplay/recording/publishers.hpp"
 #include "freeplay/recording/replay.hpp"
+#include "freeplay/recording/session_videos.hpp"
 #include "freeplay/recording/ros_messages.hpp"
 #include "freeplay/runner/episode.hpp"
 #include "freeplay/sim/sandtray.hpp"
@@ -770,4 +772,84 @@ TEST(Replay, AMetricTheBagCannotSupplyIsReportedAsDiffering) {
     }
   }
   EXPECT_EQ(equal, 2);
+}
+
+/// Writes a bag holding one /freeplay/events message with `text` as its data.
+std::filesystem::path bag_with_event_text(const std::string& name, const std::string& text) {
+  const auto file = fresh_dir(name) / "freeplay.bag";
+  Bag bag;
+  bag.open(file.string(), rosbag::bagmode::Write);
+  msg::String m;
+  m.data = ros_string(text);
+  bag.get().write(std::string(topics::kEvents), ros_time(1.0), m);
+  bag.close();
+  return file;
+}
+
+/// The InputError that reading and replaying `file` raises (fails the test when none is raised).
+InputError replay_error(const std::filesystem::path& file) {
+  try {
+    recompute_metrics(read_session(file));
+  } catch (const InputError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "no InputError for " << file;
+  return InputError("none");
+}
+
+TEST(Replay, AnEventThatIsNotJsonNamesTheBag) {
+  const auto file = bag_with_event_text("bad-json", "{\"tick\": 1.0, \"t\":");
+  const auto e = replay_error(file);
+  EXPECT_EQ(e.where().file, file.string()) << e.what();
+  EXPECT_NE(std::string(e.what()).find("not a readable freeplay recording"), std::string::npos) << e.what();
+}
+
+TEST(Replay, AnEventOfTheWrongShapeNamesTheBag) {
+  // Valid JSON whose fields have the wrong types: the metrics unit's reads fail, and the error names the bag.
+  const auto file = bag_with_event_text(
+      "bad-shape", R"({"tick": 1.0, "t": 1.0, "source": "robot", "type": "move_result", "data": {"item": 3}})");
+  const auto e = replay_error(file);
+  EXPECT_EQ(e.where().file, file.string()) << e.what();
+}
+
+TEST(Replay, ARecordLengthPastTheEndOfTheFileIsRefusedBeforeRosbagReadsIt) {
+  const auto file = bag_with_event_text("bad-length", R"({"tick": 1.0, "t": 1.0, "source": "x", "type": "y"})");
+  {
+    std::fstream f(file, std::ios::binary | std::ios::in | std::ios::out);
+    f.seekp(13);  // the first record's header length, after "#ROSBAG V2.0\n"
+    const std::uint32_t huge = 0xFFFFFFF0U;
+    f.write(reinterpret_cast<const char*>(&huge), 4);
+  }
+  const auto e = replay_error(file);
+  EXPECT_EQ(e.where().file, file.string()) << e.what();
+  EXPECT_NE(std::string(e.what()).find("corrupt bag record at byte 13"), std::string::npos) << e.what();
+}
+
+TEST(SessionVideos, TheSessionFolderHoldsEachCamerasRawVideo) {
+  const auto& r = child_robot();
+  const auto video = r.run_dir / "sessions" / "tiny-0000" / "video" / "camera_purple_raw.mkv";
+  ASSERT_TRUE(std::filesystem::exists(video));
+  EXPECT_FALSE(std::filesystem::exists(r.run_dir / "sessions" / "tiny-0000" / "video" / "camera_purple_raw.partial.mkv"));
+  cv::VideoCapture capture(video.string(), cv::CAP_FFMPEG);
+  ASSERT_TRUE(capture.isOpened());
+  int frames = 0;
+  cv::Mat frame;
+  while (capture.read(frame)) {
+    EXPECT_EQ(frame.cols, 64);
+    EXPECT_EQ(frame.rows, 48);
+    ++frames;
+  }
+  EXPECT_EQ(frames, r.frames);  // one video frame per published colour image
+  EXPECT_EQ(raw_video_name("env_camera"), "camera_env_raw.mkv");
+}
+
+TEST(SessionVideos, ADiscardedSessionLeavesNoVideo) {
+  const auto dir = fresh_dir("videos-discard");
+  {
+    SessionVideos videos(dir, {{"camera_yellow", 15.0}});
+    videos.write("camera_yellow", cv::Mat(48, 64, CV_8UC3, cv::Scalar(1, 2, 3)));
+    ASSERT_TRUE(std::filesystem::exists(dir / "video" / "camera_yellow_raw.partial.mkv"));
+    videos.discard();
+  }
+  EXPECT_TRUE(std::filesystem::is_empty(dir / "video"));
 }

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Live ROS 1 graph checks of `freeplay serve` and `freeplay robot` against a real rosmaster.
 
-Usage: live_graph_test.py FREEPLAY SCENARIO CASE   (CASE: topics | client | robot | rate | errors)
+Usage: live_graph_test.py FREEPLAY SCENARIO CASE   (CASE: topics | client | robot | rate | signals | restart | cameras | errors)
 
 Each case starts its own rosmaster on a free loopback port, the freeplay processes it needs, and a rospy client of
 ours (independent of the C++ code, with the freeplay_sandbox_msgs Python classes genpy generated at build time);
@@ -280,6 +280,19 @@ def case_robot(g):
     rospy.Subscriber("sandtray/interaction_events", String, lambda m: releases.append(m.data))
     start = item_positions(rospy, timeout=30)
     robot = g.spawn("robot", [FREEPLAY, "robot", "--policy", "asocial", "--duration", "40", "--seed", "3"])
+    # Malformed input for the robot node: a non-finite item transform (logged and dropped, never applied).
+    from tf2_msgs.msg import TFMessage
+    from geometry_msgs.msg import TransformStamped
+    bad_tf = rospy.Publisher("/tf", TFMessage, queue_size=10)
+    wait_connected(bad_tf, "/tf (bad transforms)", timeout=30)
+    wrong = TransformStamped()
+    wrong.header.frame_id = "sandtray"
+    wrong.child_frame_id = "ball"
+    wrong.transform.translation.x = float("nan")
+    wrong.transform.rotation.w = 1.0
+    for _ in range(5):
+        bad_tf.publish(TFMessage(transforms=[wrong]))
+        time.sleep(0.1)
     try:
         robot.wait(timeout=80)
     except subprocess.TimeoutExpired:
@@ -294,6 +307,8 @@ def case_robot(g):
     moved = [i for i in set(released) if math.dist(start[i][:2], end[i][:2]) > 0.02]
     print("released by the robot:", released, "moved > 2 cm:", moved)
     check(moved, "an item the robot dragged moved on /tf")
+    check("/tf: dropped a non-finite transform sandtray → ball" in g.log("robot"),
+          "the robot node logs and drops the non-finite transform")
     try:
         serve.wait(timeout=60)
     except subprocess.TimeoutExpired:
@@ -305,6 +320,152 @@ def case_robot(g):
     print("serve metrics: robot_item_moves_per_min", metrics["robot_item_moves_per_min"],
           "child_item_moves_per_min", metrics["child_item_moves_per_min"], "timing", summary["timing"])
     check(not summary["aborted"] and metrics["robot_item_moves_per_min"] > 0, "the episode counted the robot's moves")
+
+
+def wait_connected(publisher, what, timeout=10.0):
+    deadline = time.monotonic() + timeout
+    while publisher.get_num_connections() == 0:
+        check(time.monotonic() < deadline, f"nobody subscribed our {what} within {timeout} s")
+        time.sleep(0.1)
+
+
+def case_signals(g):
+    """Incoming sandtray/signals/* drive the served protocol (start_freeplay ends a 600 s greeting at once,
+    items_to_stash moves the items, blank_interface ends free play) and are not echoed; a malformed gaze target is
+    logged and dropped, never applied."""
+    serve = g.serve("--set", "protocol.greeting_s=600", "--set", "protocol.freeplay_cap_s=600")
+    rospy = rospy_client()
+    from std_msgs.msg import Empty
+    from geometry_msgs.msg import PointStamped
+    echoes = []
+    me = rospy.get_name()
+    rospy.Subscriber("sandtray/signals/start_freeplay", Empty,
+                     lambda m: echoes.append(m._connection_header["callerid"]))
+    before = item_positions(rospy, timeout=30)
+    publishers = {name: rospy.Publisher("sandtray/signals/" + name, Empty, queue_size=1, latch=False)
+                  for name in ["start_freeplay", "items_to_stash", "blank_interface"]}
+    for name, publisher in publishers.items():
+        wait_connected(publisher, "sandtray/signals/" + name)
+    time.sleep(0.5)
+    publishers["start_freeplay"].publish(Empty())
+    time.sleep(1.5)
+    look = rospy.Publisher("freeplay/robot/look_at", PointStamped, queue_size=1)
+    wait_connected(look, "freeplay/robot/look_at")
+    bad = PointStamped()
+    bad.header.frame_id = "odom"  # not the sandtray frame
+    bad.point.x = 0.3
+    look.publish(bad)
+    publishers["items_to_stash"].publish(Empty())
+    time.sleep(1.5)
+    after = item_positions(rospy)
+    moved = [i for i in ITEMS if math.dist(before[i][:2], after[i][:2]) > 0.02]
+    print("items moved by items_to_stash:", moved)
+    check(len(moved) >= 5, f"items_to_stash moved the items on /tf (moved: {moved})")
+    publishers["blank_interface"].publish(Empty())
+    try:
+        serve.wait(timeout=30)
+    except subprocess.TimeoutExpired:
+        raise AssertionError("blank_interface did not end free play")
+    check(serve.returncode == 0, f"freeplay serve failed:\n{g.log('serve')}")
+    import json
+    summary = json.loads([line for line in g.log("serve").splitlines() if line.startswith("{")][-1])
+    print("serve summary:", {k: summary[k] for k in ["ended_by", "duration_s", "simulated_s"]})
+    check(summary["ended_by"] == "signal", f"free play ended by the signal: {summary['ended_by']}")
+    check(summary["simulated_s"] < 60, f"start_freeplay cut the 600 s greeting short: {summary['simulated_s']} s")
+    others = [c for c in echoes if c != me]
+    check(not others, f"serve echoed start_freeplay (from {others})")
+    log = g.log("serve")
+    check("received sandtray/signals/start_freeplay: applied" in log, "serve logs the applied signal")
+    check("look_at: dropped a malformed target (frame 'odom'" in log, "serve logs and drops the malformed target")
+
+
+def case_cameras(g):
+    """The scenario's cameras are rendered and published live under their drivers' topics: the Nao's head camera
+    (naoqi_driver front) and an SR300 (camera_purple), JPEG with their CameraInfo."""
+    cameras = ("cameras=[{name: CameraTop, rate_hz: 5, width: 160, height: 120}, "
+               "{name: camera_purple, rate_hz: 2, width: 192, height: 108}]")
+    g.serve("--set", cameras)
+    rospy = rospy_client()
+    from sensor_msgs.msg import CameraInfo, CompressedImage
+    for image_topic, info_topic, size in [
+            ("/naoqi_driver/camera/front/image_raw/compressed", "/naoqi_driver/camera/front/camera_info", (160, 120)),
+            ("/camera_purple/rgb/image_raw/compressed", "/camera_purple/rgb/camera_info", (192, 108))]:
+        image = rospy.wait_for_message(image_topic, CompressedImage, timeout=60)
+        info = rospy.wait_for_message(info_topic, CameraInfo, timeout=10)
+        check(image.format.endswith("jpeg compressed bgr8") and bytes(image.data[:2]) == b"\xff\xd8",
+              f"{image_topic}: a JPEG ({image.format})")
+        check((info.width, info.height) == size and info.K[0] > 0, f"{info_topic}: {info.width}x{info.height}")
+        print(f"{image_topic}: {len(image.data)} bytes, frame {image.header.frame_id}, K[0] {info.K[0]:.1f}")
+
+
+def registrations(g):
+    """(publishers, subscribers, services) of the master as {name: [nodes]}."""
+    state = xmlrpc.client.ServerProxy(g.uri).getSystemState("/freeplay_test")[2]
+    return [dict((name, set(nodes)) for name, nodes in part) for part in state]
+
+
+def wait_master(g, timeout=15.0):
+    deadline = time.monotonic() + timeout
+    while True:
+        try:
+            return registrations(g)
+        except OSError:
+            check(time.monotonic() < deadline, f"the restarted master did not answer on {g.uri}")
+            time.sleep(0.2)
+
+
+def case_restart(g):
+    """A master that restarts and nodes that die crash neither side: serve and robot run on while the master is
+    away, register again when it is back (the robot moves items through the new master), and each survives the
+    other's death."""
+    serve = g.serve("--robot", "external", "--set", "protocol.freeplay_cap_s=600")
+    robot = g.spawn("robot", [FREEPLAY, "robot", "--policy", "asocial", "--seed", "3"])
+
+    def registered(state):
+        pubs, subs, services = state
+        return ("/sandtray" in pubs.get("/tf", ()) and "/freeplay_robot" in subs.get("/tf", ())
+                and "/freeplay_robot" in pubs.get("/poses", ()) and "/sandtray" in subs.get("/poses", ())
+                and "/sandtray" in services.get("/plan_motion", ()))
+    deadline = time.monotonic() + 30
+    while not registered(registrations(g)):
+        check(time.monotonic() < deadline, f"serve and robot did not register: {registrations(g)}")
+        time.sleep(0.3)
+    time.sleep(3)
+    master = g.procs[0][1]
+    os.killpg(master.pid, signal.SIGKILL)  # the master dies
+    master.wait(timeout=5)
+    time.sleep(3)
+    check(serve.poll() is None and robot.poll() is None, "serve and robot run on without the master")
+    g.spawn("rosmaster_again", ["/usr/bin/rosmaster", "--core", "-p", str(g.port)])
+    wait_master(g)
+    deadline = time.monotonic() + 15
+    while not registered(registrations(g)):
+        check(time.monotonic() < deadline, f"serve and robot did not register again: {registrations(g)}")
+        time.sleep(0.3)
+    print("registered again with the restarted master")
+    rospy = rospy_client()  # registers with the new master
+    from std_msgs.msg import String
+    releases = []
+    rospy.Subscriber("sandtray/interaction_events", String, lambda m: releases.append(m.data))
+    deadline = time.monotonic() + 60
+    while not any(r.startswith("releasing_") for r in releases):
+        check(time.monotonic() < deadline, f"no item released by the robot after the restart (events {releases})")
+        check(serve.poll() is None and robot.poll() is None, "serve and robot still run")
+        time.sleep(0.2)
+    print("after the restart, the game released:", [r for r in releases if r.startswith("releasing_")])
+    os.killpg(robot.pid, signal.SIGKILL)  # the robot node dies
+    robot.wait(timeout=5)
+    time.sleep(2)
+    check(serve.poll() is None, "serve runs on after the robot node died")
+    item_positions(rospy)
+    robot = g.spawn("robot_again", [FREEPLAY, "robot", "--policy", "asocial", "--seed", "4"])
+    time.sleep(3)
+    os.killpg(serve.pid, signal.SIGKILL)  # the sandtray dies
+    serve.wait(timeout=5)
+    time.sleep(2)
+    check(robot.poll() is None, "robot runs on after the sandtray died")
+    for line in ["lost the ROS master", "is back: registering again"]:
+        check(line in g.log("serve") and line in g.log("robot"), f"serve and robot log '{line}'")
 
 
 def case_errors():
@@ -326,7 +487,8 @@ def main():
         case_errors()
         print("errors: ok")
         return
-    cases = {"topics": case_topics, "client": case_client, "robot": case_robot, "rate": case_rate}
+    cases = {"topics": case_topics, "client": case_client, "robot": case_robot, "rate": case_rate,
+             "signals": case_signals, "restart": case_restart, "cameras": case_cameras}
     with Graph() as g:
         try:
             cases[CASE](g)

@@ -80,6 +80,27 @@ TEST(RunFolder, ResumesAndDropsATornLastLine) {
   EXPECT_FALSE(reread.dropped_partial_line());
 }
 
+TEST(RunFolder, RemembersAnEpisodeRecordedWithAnotherConfiguration) {
+  // The index keeps one hash per variant and the episodes that differ from it.
+  const auto dir = fresh_dir("run_folder_hashes");
+  {
+    RunFolder run(dir);
+    run.append({{"variant", "cc"}, {"episode", 0}, {"config_hash", 42}});
+    run.append({{"variant", "cc"}, {"episode", 5}, {"config_hash", 7}});
+    run.append({{"variant", "cr"}, {"episode", 2}, {"config_hash", 9}});
+  }
+  RunFolder resumed(dir);
+  EXPECT_TRUE(resumed.finished("cc", 0, 42));
+  EXPECT_TRUE(resumed.finished("cc", 5, 7));
+  EXPECT_THROW(resumed.finished("cc", 5, 42), InputError);
+  EXPECT_THROW(resumed.finished("cc", 0, 7), InputError);
+  EXPECT_FALSE(resumed.finished("cc", 3, 42));
+  EXPECT_FALSE(resumed.finished("cc", 100, 42));
+  EXPECT_TRUE(resumed.finished("cr", 2, 9));
+  EXPECT_FALSE(resumed.finished("cr", 1, 9));
+  EXPECT_FALSE(resumed.finished("other", 0, 42));
+}
+
 TEST(RunFolder, EpisodeFileIdsAreSafe) {
   EXPECT_EQ(RunFolder::episode_file_id("cr[a.b=0.1]", 7), "cr_a.b=0.1_-0007");
 }

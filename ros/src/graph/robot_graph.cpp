@@ -13,8 +13,10 @@
 #include <cmath>
 #include <map>
 #include <mutex>
+#include <optional>
 
 #include "freeplay/ros/graph.hpp"
+#include "master_watch.hpp"
 
 namespace freeplay::ros_graph {
 
@@ -47,48 +49,70 @@ std::vector<Polyline> polylines(const visualization_msgs::MarkerArray& array) {
 }  // namespace
 
 struct RobotGraph::Impl {
-  ros::NodeHandle nh;
+  std::optional<ros::NodeHandle> nh;  // renewed with every registration
   ros::Publisher poses, speech, look, point;
   std::vector<ros::Subscriber> subscribers;
   ros::AsyncSpinner spinner{2};
   std::mutex mutex;
   std::map<std::string, Transform> frames;
   RobotView view;
+  MasterWatch master;
+  int registered_with = 0;  // master.returns() at the last registration
 
   Impl() {
-    poses = nh.advertise<geometry_msgs::PoseStamped>("/poses", 10);
-    speech = nh.advertise<std_msgs::String>("speech", 10);
-    look = nh.advertise<geometry_msgs::PointStamped>("freeplay/robot/look_at", 10);
-    point = nh.advertise<geometry_msgs::PointStamped>("freeplay/robot/point_at", 10);
+    connect();
+    spinner.start();
+  }
+
+  // Subscribes and advertises (again after a master restart).
+  void connect() {
+    nh.emplace();
+    auto& handle = *nh;
+    poses = handle.advertise<geometry_msgs::PoseStamped>("/poses", 10);
+    speech = handle.advertise<std_msgs::String>("speech", 10);
+    look = handle.advertise<geometry_msgs::PointStamped>("freeplay/robot/look_at", 10);
+    point = handle.advertise<geometry_msgs::PointStamped>("freeplay/robot/point_at", 10);
     for (const char* topic : {"/tf", "/tf_static"}) {
-      subscribers.push_back(nh.subscribe<tf2_msgs::TFMessage>(topic, 100, [this](const auto& msg) { on_tf(*msg); }));
+      subscribers.push_back(handle.subscribe<tf2_msgs::TFMessage>(topic, 100, [this](const auto& msg) { on_tf(*msg); }));
     }
-    subscribers.push_back(nh.subscribe<visualization_msgs::MarkerArray>("/zones", 1, [this](const auto& msg) {
+    subscribers.push_back(handle.subscribe<visualization_msgs::MarkerArray>("/zones", 1, [this](const auto& msg) {
       auto zones = polylines(*msg);
       std::lock_guard lock(mutex);
       view.zones = std::move(zones);
     }));
-    subscribers.push_back(nh.subscribe<visualization_msgs::MarkerArray>("/footprints", 1, [this](const auto& msg) {
+    subscribers.push_back(handle.subscribe<visualization_msgs::MarkerArray>("/footprints", 1, [this](const auto& msg) {
       auto footprints = polylines(*msg);
       std::lock_guard lock(mutex);
       view.footprints = std::move(footprints);
     }));
-    subscribers.push_back(nh.subscribe<std_msgs::String>("sandtray/interaction_events", 20, [this](const auto& msg) {
+    subscribers.push_back(handle.subscribe<std_msgs::String>("sandtray/interaction_events", 20, [this](const auto& msg) {
       std::lock_guard lock(mutex);
       view.interaction_events.push_back(msg->data);
     }));
-    subscribers.push_back(nh.subscribe<std_msgs::Empty>("sandtray/signals/start_freeplay", 1, [this](const auto&) {
+    subscribers.push_back(handle.subscribe<std_msgs::Empty>("sandtray/signals/start_freeplay", 1, [this](const auto&) {
       std::lock_guard lock(mutex);
       view.freeplay_started = true;
     }));
     const char* faces[] = {"/camera_purple/nb_detected_faces", "/camera_yellow/nb_detected_faces"};
     for (std::size_t i = 0; i < 2; ++i) {
-      subscribers.push_back(nh.subscribe<std_msgs::Char>(faces[i], 1, [this, i](const auto& msg) {
+      subscribers.push_back(handle.subscribe<std_msgs::Char>(faces[i], 1, [this, i](const auto& msg) {
         std::lock_guard lock(mutex);
         view.faces[i] = msg->data;
       }));
     }
-    spinner.start();
+  }
+
+  // After the master came back: drops every registration and makes them anew.
+  void maintain() {
+    const int returns = master.returns();
+    if (returns == registered_with || !master.up()) return;
+    registered_with = returns;
+    for (auto* p : {&poses, &speech, &look, &point}) p->shutdown();
+    for (auto& sub : subscribers) sub.shutdown();
+    subscribers.clear();
+    nh.reset();
+    connect();
+    spdlog::info("subscribed and advertised with the ROS master again");
   }
 
   ~Impl() { spinner.stop(); }
@@ -114,6 +138,8 @@ RobotGraph::RobotGraph() : impl_(std::make_unique<Impl>()) {}
 RobotGraph::~RobotGraph() = default;
 
 bool RobotGraph::ok() const { return ros::ok(); }
+
+void RobotGraph::maintain() { impl_->maintain(); }
 
 RobotView RobotGraph::take() {
   std::lock_guard lock(impl_->mutex);

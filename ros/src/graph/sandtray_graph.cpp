@@ -27,6 +27,7 @@
 #include <utility>
 
 #include "freeplay/ros/graph.hpp"
+#include "master_watch.hpp"
 
 namespace freeplay::ros_graph {
 
@@ -87,14 +88,22 @@ visualization_msgs::Marker line_marker(const ros::Time& stamp, const Polyline& p
 
 struct SandtrayGraph::Impl {
   NodeOptions options;
-  ros::NodeHandle nh;
+  std::optional<ros::NodeHandle> nh;  // renewed with every registration
   ros::Publisher clock, tf, footprints, zones, image, compressed, camera_info, map, events, speech, joints, poses,
       markers;
   std::map<std::string, ros::Publisher> signal_out;
+  std::map<std::string, ros::Publisher> cameras;  // by topic, advertised at the first frame
   std::vector<ros::Subscriber> subscribers;
   std::unique_ptr<NavigationServer> server;
   ros::ServiceServer plan_server;
   ros::AsyncSpinner spinner{4};
+  MasterWatch master;
+  int registered_with = 0;  // master.returns() at the last registration
+  // The latched topics' last messages, published again after a new registration.
+  std::optional<visualization_msgs::MarkerArray> last_footprints, last_zones;
+  std::optional<sensor_msgs::Image> last_image;
+  std::optional<sensor_msgs::CompressedImage> last_compressed;
+  std::optional<sensor_msgs::CameraInfo> last_camera_info;
 
   mutable std::mutex mutex;
   std::condition_variable answered;
@@ -110,22 +119,31 @@ struct SandtrayGraph::Impl {
   std::map<std::uint64_t, std::optional<std::vector<std::array<double, 2>>>> plan_answers;
 
   explicit Impl(const NodeOptions& o) : options(o) {
-    if (o.publish_clock) clock = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);
-    tf = nh.advertise<tf2_msgs::TFMessage>("/tf", 100);
-    footprints = nh.advertise<visualization_msgs::MarkerArray>("/footprints", 1, true);
-    zones = nh.advertise<visualization_msgs::MarkerArray>("/zones", 1, true);
-    image = nh.advertise<sensor_msgs::Image>("/sandtray/background/image", 1, true);
-    compressed = nh.advertise<sensor_msgs::CompressedImage>("/sandtray/background/image/compressed", 1, true);
-    camera_info = nh.advertise<sensor_msgs::CameraInfo>("/sandtray/background/camera_info", 1, true);
-    map = nh.advertise<nav_msgs::OccupancyGrid>("/map", 1);
-    events = nh.advertise<std_msgs::String>("sandtray/interaction_events", 10);
-    speech = nh.advertise<std_msgs::String>("speech", 10);
-    joints = nh.advertise<sensor_msgs::JointState>("/joint_states", 10);
-    poses = nh.advertise<geometry_msgs::PoseStamped>("/poses", 10);
-    markers = nh.advertise<visualization_msgs::Marker>("/visualization_markers", 10);
+    connect();
+    spinner.start();
+  }
+
+  // Advertises every topic and server and subscribes (again after a master restart).
+  void connect() {
+    const NodeOptions& o = options;
+    nh.emplace();
+    auto& handle = *nh;
+    if (o.publish_clock) clock = handle.advertise<rosgraph_msgs::Clock>("/clock", 10);
+    tf = handle.advertise<tf2_msgs::TFMessage>("/tf", 100);
+    footprints = handle.advertise<visualization_msgs::MarkerArray>("/footprints", 1, true);
+    zones = handle.advertise<visualization_msgs::MarkerArray>("/zones", 1, true);
+    image = handle.advertise<sensor_msgs::Image>("/sandtray/background/image", 1, true);
+    compressed = handle.advertise<sensor_msgs::CompressedImage>("/sandtray/background/image/compressed", 1, true);
+    camera_info = handle.advertise<sensor_msgs::CameraInfo>("/sandtray/background/camera_info", 1, true);
+    map = handle.advertise<nav_msgs::OccupancyGrid>("/map", 1);
+    events = handle.advertise<std_msgs::String>("sandtray/interaction_events", 10);
+    speech = handle.advertise<std_msgs::String>("speech", 10);
+    joints = handle.advertise<sensor_msgs::JointState>("/joint_states", 10);
+    poses = handle.advertise<geometry_msgs::PoseStamped>("/poses", 10);
+    markers = handle.advertise<visualization_msgs::Marker>("/visualization_markers", 10);
     for (const char* name : kSignals) {
       const std::string topic = std::string("sandtray/signals/") + name;
-      signal_out[name] = nh.advertise<std_msgs::Empty>(topic, 1);
+      signal_out[name] = handle.advertise<std_msgs::Empty>(topic, 1);
       subscribers.push_back(subscribe_events<std_msgs::Empty>(
           topic, 10, [this, n = std::string(name)](const ros::MessageEvent<const std_msgs::Empty>& e) {
             if (own(e.getPublisherName())) return;
@@ -135,13 +153,13 @@ struct SandtrayGraph::Impl {
     }
     subscribers.push_back(subscribe_events<geometry_msgs::PoseStamped>(
         "/poses", 10, [this](const ros::MessageEvent<const geometry_msgs::PoseStamped>& e) { on_pose(e); }));
-    subscribers.push_back(nh.subscribe<geometry_msgs::PointStamped>(
+    subscribers.push_back(handle.subscribe<geometry_msgs::PointStamped>(
         "freeplay/robot/look_at", 10, [this](const geometry_msgs::PointStamped::ConstPtr& m) {
           if (!valid_target(*m, "freeplay/robot/look_at")) return;
           std::lock_guard lock(mutex);
           look_at = std::array<double, 3>{m->point.x, m->point.y, m->point.z};
         }));
-    subscribers.push_back(nh.subscribe<geometry_msgs::PointStamped>(
+    subscribers.push_back(handle.subscribe<geometry_msgs::PointStamped>(
         "freeplay/robot/point_at", 10, [this](const geometry_msgs::PointStamped::ConstPtr& m) {
           if (!valid_target(*m, "freeplay/robot/point_at")) return;
           std::lock_guard lock(mutex);
@@ -149,14 +167,52 @@ struct SandtrayGraph::Impl {
         }));
     if (o.core_servers) {
       server = std::make_unique<NavigationServer>(
-          nh, "move_sandbox_items", [this](NavigationServer::GoalHandle gh) { on_goal(gh); },
+          handle, "move_sandbox_items", [this](NavigationServer::GoalHandle gh) { on_goal(gh); },
           [this](NavigationServer::GoalHandle gh) { on_cancel(gh); }, false);
       server->start();
-      plan_server = nh.advertiseService<freeplay_sandbox_msgs::PlaygroundPlan::Request,
+      plan_server = handle.advertiseService<freeplay_sandbox_msgs::PlaygroundPlan::Request,
                                         freeplay_sandbox_msgs::PlaygroundPlan::Response>(
           "plan_motion", [this](auto& request, auto& response) { return on_plan(request, response); });
     }
-    spinner.start();
+  }
+
+  // Ends every registration (the accepted goals are aborted: their server goes).
+  void disconnect() {
+    {
+      std::lock_guard lock(mutex);
+      for (auto& [id, gh] : goals) gh.setAborted({}, "the ROS master restarted");
+      goals.clear();
+      cancels.clear();
+      pending_goal.reset();
+    }
+    for (auto* p : {&clock, &tf, &footprints, &zones, &image, &compressed, &camera_info, &map, &events, &speech,
+                    &joints, &poses, &markers}) {
+      p->shutdown();
+    }
+    for (auto& [name, p] : signal_out) p.shutdown();
+    signal_out.clear();
+    for (auto& [name, p] : cameras) p.shutdown();
+    cameras.clear();
+    for (auto& sub : subscribers) sub.shutdown();
+    subscribers.clear();
+    server.reset();
+    plan_server.shutdown();
+    nh.reset();
+  }
+
+  // After the master came back: register anew and publish the latched topics again.
+  void maintain() {
+    const int returns = master.returns();
+    if (returns == registered_with || !master.up()) return;
+    registered_with = returns;
+    disconnect();
+    connect();
+    if (last_footprints) footprints.publish(*last_footprints);
+    if (last_zones) zones.publish(*last_zones);
+    if (last_image) image.publish(*last_image);
+    if (last_compressed) compressed.publish(*last_compressed);
+    if (last_camera_info) camera_info.publish(*last_camera_info);
+    spdlog::info("registered every topic and server with the ROS master again");
   }
 
   // Subscribes with the sender's connection header (a plain message callback loses the caller id).
@@ -165,7 +221,7 @@ struct SandtrayGraph::Impl {
                                    const boost::function<void(const ros::MessageEvent<const M>&)>& callback) {
     ros::SubscribeOptions subscription;
     subscription.template initByFullCallbackType<const ros::MessageEvent<const M>&>(topic, queue, callback);
-    return nh.subscribe(subscription);
+    return nh->subscribe(subscription);
   }
 
   ~Impl() {
@@ -243,6 +299,8 @@ SandtrayGraph::~SandtrayGraph() = default;
 
 bool SandtrayGraph::ok() const { return ros::ok(); }
 
+void SandtrayGraph::maintain() { impl_->maintain(); }
+
 void SandtrayGraph::clock(double stamp) {
   if (!impl_->options.publish_clock) return;
   rosgraph_msgs::Clock msg;
@@ -273,6 +331,7 @@ void SandtrayGraph::footprints(double stamp, const std::vector<Polyline>& polygo
   visualization_msgs::MarkerArray msg;
   for (const auto& p : polygons) msg.markers.push_back(line_marker(stamp_of(stamp), p));
   impl_->footprints.publish(msg);
+  impl_->last_footprints = std::move(msg);
 }
 
 void SandtrayGraph::zones(double stamp, const std::vector<Polyline>& polygons) {
@@ -284,6 +343,7 @@ void SandtrayGraph::zones(double stamp, const std::vector<Polyline>& polygons) {
   msg.markers.push_back(clear);
   for (const auto& p : polygons) msg.markers.push_back(line_marker(stamp_of(stamp), p));
   impl_->zones.publish(msg);
+  impl_->last_zones = std::move(msg);
 }
 
 void SandtrayGraph::background(double stamp, const Image& image) {
@@ -308,6 +368,9 @@ void SandtrayGraph::background(double stamp, const Image& image) {
   const double f = 1.0 / image.pixel2meter;
   info.K = {f, 0, 0, 0, f, 0, 0, 0, 1};
   impl_->camera_info.publish(info);
+  impl_->last_image = std::move(raw);
+  impl_->last_compressed = std::move(png);
+  impl_->last_camera_info = std::move(info);
 }
 
 void SandtrayGraph::map(double stamp, const Grid& grid) {
@@ -359,6 +422,33 @@ void SandtrayGraph::finger(double stamp, double x, double y) {
   msg.pose.position.x = x;
   msg.pose.position.y = y;
   impl_->poses.publish(msg);
+}
+
+void SandtrayGraph::camera(double stamp, const CameraFrame& frame) {
+  auto& d = *impl_;
+  auto publisher = [&d](const std::string& topic, auto message_type) -> ros::Publisher& {
+    auto it = d.cameras.find(topic);
+    if (it == d.cameras.end()) {
+      it = d.cameras.emplace(topic, d.nh->advertise<decltype(message_type)>(topic, 2)).first;
+    }
+    return it->second;
+  };
+  sensor_msgs::CompressedImage image;
+  image.header.stamp = stamp_of(stamp);
+  image.header.frame_id = frame.frame_id;
+  image.format = frame.format;
+  image.data = frame.jpeg;
+  publisher(frame.image_topic, sensor_msgs::CompressedImage{}).publish(image);
+  sensor_msgs::CameraInfo info;
+  info.header = image.header;
+  info.width = static_cast<std::uint32_t>(frame.width);
+  info.height = static_cast<std::uint32_t>(frame.height);
+  info.distortion_model = "plumb_bob";
+  info.D = {0, 0, 0, 0, 0};
+  info.K = {frame.K[0], 0, frame.K[2], 0, frame.K[1], frame.K[3], 0, 0, 1};
+  info.R = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  info.P = {frame.K[0], 0, frame.K[2], 0, 0, frame.K[1], frame.K[3], 0, 0, 0, 1, 0};
+  publisher(frame.info_topic, sensor_msgs::CameraInfo{}).publish(info);
 }
 
 void SandtrayGraph::trajectory(double stamp, const std::vector<std::array<double, 2>>& points) {

@@ -24,7 +24,10 @@ struct SessionPaths {
   std::filesystem::path bag_yaml;     ///< `freeplay.bag.yaml` (rosbag info --yaml of the closed bag)
 };
 /// The files of the session folder `dir`.
-SessionPaths session_paths(const std::filesystem::path& dir);
+inline SessionPaths session_paths(const std::filesystem::path& dir) {
+  return {dir, dir / "freeplay.bag", dir / "freeplay.bag.active", dir / "experiment.yaml",
+          dir / "freeplay.annotations.freeplay-sim.yaml", dir / "freeplay.bag.yaml"};
+}
 
 /// The topics the recorder writes (besides the camera topics of camera_topics()).
 namespace topics {

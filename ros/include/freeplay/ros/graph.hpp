@@ -58,6 +58,18 @@ struct Grid {
   std::vector<std::int8_t> cells;     ///< row-major, row 0 at origin_y, 0–100
 };
 
+/// One camera frame as its driver publishes it: a JPEG sensor_msgs/CompressedImage and its CameraInfo.
+struct CameraFrame {
+  std::string image_topic;         ///< e.g. "/naoqi_driver/camera/front/image_raw/compressed"
+  std::string info_topic;          ///< e.g. "/naoqi_driver/camera/front/camera_info"
+  std::string frame_id;            ///< optical frame
+  std::string format;              ///< CompressedImage.format, e.g. "rgb8; jpeg compressed bgr8"
+  std::vector<std::uint8_t> jpeg;  ///< the image
+  int width = 0;                   ///< px
+  int height = 0;                  ///< px
+  std::array<double, 4> K{};       ///< fx, fy, cx, cy (px)
+};
+
 /// A `/poses` message received (a robot finger pose).
 struct FingerPose {
   double x = 0.0;            ///< m
@@ -108,6 +120,9 @@ class SandtrayGraph {
 
   /// False once ROS shut down (master gone for good, Ctrl-C through ROS).
   bool ok() const;
+  /// Call once per tick: after the master came back from a restart, registers every topic and server anew and
+  /// publishes the latched topics again (goals accepted before are aborted).
+  void maintain();
   /// Publishes `/clock` (only with publish_clock).
   void clock(double stamp);
   /// Publishes one `/tf` message with `transforms`.
@@ -130,6 +145,8 @@ class SandtrayGraph {
   void joint_states(double stamp, const JointStates& joints);
   /// Publishes one `/poses` message (frame `/sandtray`) from our own move executor.
   void finger(double stamp, double x, double y);
+  /// Publishes one camera frame (its topics are advertised at the first frame).
+  void camera(double stamp, const CameraFrame& frame);
   /// Publishes the move's trajectory so far on `/visualization_markers` (ns item_motion_traj, red, 1 s lifetime).
   void trajectory(double stamp, const std::vector<std::array<double, 2>>& points);
 
@@ -180,6 +197,8 @@ class RobotGraph {
 
   /// False once ROS shut down.
   bool ok() const;
+  /// Call once per tick: after the master came back from a restart, subscribes and advertises anew.
+  void maintain();
   /// A copy of what is known now (events are handed out once).
   RobotView take();
   /// Publishes one `/poses` fake touch (frame `/sandtray`).

@@ -17,13 +17,13 @@ std::array<double, 4> yaw_rotation(double yaw);
 double rotation_yaw(const std::array<double, 4>& q);
 /// The game's TF broadcaster: sandtray → every item (centre, yaw) and touch1…touch6 while a finger is down.
 std::vector<ros_graph::Transform> game_frames(const sim::Sandtray& tray);
-/// sandtray_publisher (sandtray.xacro): sandtray → camera_purple_link, camera_yellow_link, env_camera_link.
+/// sandtray_publisher (sandtray.xacro, kSandtrayCameraLinks): sandtray → the camera links.
 std::vector<ros_graph::Transform> camera_links();
 /// sandtray_localisation's `arm_reach` frame: shoulder projected on the table, z = radius of the reachable disc.
 ros_graph::Transform arm_reach_frame(const runner::ReachDisc& reach);
-/// The game's FootprintsPublisher: one closed polygon per item in the item's own frame ("/<item>").
+/// The game's FootprintsPublisher (sim::footprint_markers) as the graph's polylines.
 std::vector<ros_graph::Polyline> footprint_markers(const sim::Sandtray& tray);
-/// zones_from_image: one closed LINE_STRIP per zone, ns `sandbox_zone_<colour>`, frame "/sandtray".
+/// zones_from_image (sim::zone_markers) as the graph's polylines.
 std::vector<ros_graph::Polyline> zone_markers(const sim::Sandtray& tray);
 /// The game's ImagePublisher: the background (drawing included) as rgba8 and PNG.
 ros_graph::Image background_image(const sim::Sandtray& tray);

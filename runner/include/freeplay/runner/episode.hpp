@@ -19,6 +19,7 @@
 #include "freeplay/runner/robot_action_source.hpp"
 #include "freeplay/runner/robot_body.hpp"
 #include "freeplay/runner/scenario.hpp"
+#include "freeplay/runner/signal_source.hpp"
 #include "freeplay/runner/suite_runner.hpp"
 #include "freeplay/sim/item_catalogue.hpp"
 
@@ -55,9 +56,13 @@ EpisodeResult run_episode(const Scenario& scenario, std::uint64_t seed, const Sh
 /// to the run without observers except for the fields the observers add to the record. With `children`, the
 /// children's free-play actions come from it instead of the synthetic agents (which then leave no annotations).
 /// With `robot` (child-robot scenarios), the robot's finger poses come from it instead of its policy and executor.
+/// With `signals`, signals received from outside are applied at every tick: `start_tutorial`, `start_freeplay` and
+/// (in free play) `blank_interface` end the stages before the one they start (free play then ends "by signal");
+/// every other signal goes to the game as it is.
 EpisodeResult run_episode(const Scenario& scenario, std::uint64_t seed, const SharedModels& models,
                           const std::atomic<bool>& stop, EpisodeObservers& observers, const EpisodeInfo& info,
-                          ChildActionSource* children = nullptr, RobotActionSource* robot = nullptr);
+                          ChildActionSource* children = nullptr, RobotActionSource* robot = nullptr,
+                          SignalSource* signals = nullptr);
 
 /// Makes the observers an episode of a scenario needs (cameras, recorder) for the run folder `run_dir`.
 using ObserverFactory = std::function<EpisodeObservers(const Scenario& scenario, const std::filesystem::path& run_dir)>;

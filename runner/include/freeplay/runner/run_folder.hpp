@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -51,7 +52,16 @@ class RunFolder {
  private:
   std::filesystem::path dir_;
   mutable std::mutex mutex_;
-  std::unordered_map<std::string, std::uint64_t> finished_;  // "<variant>\n<episode>" → configuration hash
+  /// The finished episodes of one variant: one bit per episode index, the configuration hash of the variant's first
+  /// record, and the episodes recorded with another hash (rare: a changed scenario).
+  struct FinishedEpisodes {
+    std::vector<bool> done;
+    std::uint64_t config_hash = 0;
+    std::map<int, std::uint64_t> other_hashes;
+  };
+  /// Marks `variant` episode `index` finished with `config_hash` (the caller holds mutex_ or is the constructor).
+  void mark_finished(const std::string& variant, int index, std::uint64_t config_hash);
+  std::unordered_map<std::string, FinishedEpisodes> finished_;  // by variant
   std::size_t records_ = 0;
   bool dropped_partial_ = false;
 };

@@ -2,6 +2,8 @@
 // Per-condition summaries of a run: mean, SD, median and 95 % bootstrap CI of every metric, with the session
 // durations beside the PInSoRo values.
 
+#include <array>
+#include <cstdint>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -44,12 +46,35 @@ struct VariantSummary {
   std::string condition;               ///< "child-child" / "child-robot"
   std::string policy;                  ///< robot policy ("" for child-child)
   int episodes = 0;                    ///< finished episodes
-  std::vector<double> durations_s;     ///< free-play durations
+  Summary duration_min;                ///< free-play durations (minutes)
+  std::array<double, 3> still_playing{};  ///< share of sessions lasting ≥ 10, ≥ 20 and ≥ 30 minutes
   std::vector<MetricSummary> metrics;  ///< sorted by name
 };
 
+/// One metric's values as a summary needs them, in memory that stops growing at kBootstrapMaxValues values: every
+/// value up to that many (summarised exactly as `summarize` does), then running moments (mean, SD, normal CI) and a
+/// uniform sample of kBootstrapMaxValues values (reservoir sampling, seeded: deterministic for a given record order)
+/// whose median stands for the median.
+class MetricSample {
+ public:
+  /// Takes one value (NaN is ignored, as `summarize` does).
+  void add(double value);
+  /// Values taken (NaN excluded).
+  std::uint64_t count() const { return n_; }
+  /// The summary of the values divided by `divisor`; `seed` drives the bootstrap of small samples.
+  Summary summary(std::uint64_t seed, double divisor = 1.0) const;
+
+ private:
+  std::vector<double> kept_;  // every value while n ≤ kBootstrapMaxValues, then a uniform sample of that many
+  std::uint64_t n_ = 0;
+  double mean_ = 0.0;  // Welford's running mean and sum of squared deviations
+  double m2_ = 0.0;
+  std::uint64_t rng_ = 0x9e3779b97f4a7c15ULL;  // SplitMix64 state of the reservoir
+};
+
 /// Builds the variant summaries one record at a time (for episodes.jsonl streamed from disk): it keeps the numbers
-/// it summarises, never the records.
+/// it summarises, at most kBootstrapMaxValues per metric and variant (MetricSample), never the records, so its
+/// memory does not grow with the number of episodes past that.
 class RunSummarizer {
  public:
   /// Summaries of the variants in `variant_order` (others are ignored).
@@ -62,7 +87,8 @@ class RunSummarizer {
  private:
   struct Variant {
     VariantSummary summary;
-    std::map<std::string, std::vector<double>> values;
+    std::map<std::string, MetricSample> values;
+    std::array<std::uint64_t, 3> still_playing{};  // durations ≥ 10, 20, 30 min
   };
   std::vector<Variant> variants_;
   std::map<std::string, std::size_t> index_;

@@ -1,0 +1,17 @@
+#pragma once
+// A structural check of a ROS bag 2.0 file before rosbag_storage reads it: Debian's rosbag trusts every length and
+// offset in the file (it allocates what a length says and reads a chunk at whatever offset the index gives), so a
+// corrupt or hostile bag could make it allocate gigabytes or read outside its buffers.
+
+#include <filesystem>
+
+namespace freeplay::recording {
+
+/// Walks every record of `file` (`#ROSBAG V2.0`; per record: header length, header, data length, data; the records
+/// inside uncompressed chunks too) and throws an InputError naming the file and the byte offset when a length runs
+/// past its record or the file, a chunk claims more than 512 MiB, an index entry points at no record of its chunk,
+/// a chunk-info record at no chunk, or the bag header's index position at no record. A file without the 2.0 magic or
+/// without an index (a killed recording) is left to rosbag, whose messages say what is wrong.
+void check_bag_structure(const std::filesystem::path& file);
+
+}  // namespace freeplay::recording

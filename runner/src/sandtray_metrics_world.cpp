@@ -1,0 +1,15 @@
+// The live sandtray as the metrics' world (apart from episode_metrics.cpp, which needs no simulation to link).
+#include "freeplay/runner/episode_metrics.hpp"
+#include "freeplay/sim/sandtray.hpp"
+#include "freeplay/sim/zones.hpp"
+
+namespace freeplay::runner {
+
+Vec2 SandtrayMetricsWorld::item_position(const std::string& item) const { return tray_.item(item).pose.position(); }
+
+std::string SandtrayMetricsWorld::zone_at(const Vec2& p) const {
+  const auto* zone = tray_.zones().at(p);
+  return zone != nullptr ? zone->colour : "";
+}
+
+}  // namespace freeplay::runner
