@@ -34,6 +34,8 @@ void add_web_options(CLI::App& serve, WebCliOptions& o) {
   serve.add_option("--sparc-timeout", o.sparc_timeout_s, "Supervised mode: a proposal executes after this many "
                                                          "simulated seconds unless vetoed")
       ->check(CLI::Range(0.1, 60.0));
+  serve.add_flag("--web-record", o.record, "Record the session's bag from the start (<web-out>/recording/freeplay.bag; "
+                                         "else paused until the page starts it)");
   serve.add_flag("--web-no-linger", o.no_linger, "Exit when the episode ends instead of waiting for 'finalise'");
   serve.add_flag("--web-ros", o.ros, "Also take the real WoZ GUI's sparc/selected_action from the ROS master "
                                      "(ROS_MASTER_URI; --master-timeout)");
@@ -67,6 +69,7 @@ void run_web_serve(const std::string& file, const std::vector<std::string>& over
                  : o.mode == "supervised" ? web::RobotMode::Supervised : web::RobotMode::Autonomous;
   options.sparc_timeout_s = o.sparc_timeout_s;
   options.linger = !o.no_linger;
+  options.record = o.record;
   options.out = o.out.empty() ? std::filesystem::path("runs") / fmt::format("web-{:%Y%m%dT%H%M%S}", fmt::gmtime(std::time(nullptr)))
                               : std::filesystem::path(o.out);
   const auto episode_seed = runner::episode_seed(seed.value_or(scenario.seed), 0);

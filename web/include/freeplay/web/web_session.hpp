@@ -25,6 +25,9 @@ struct WebSessionOptions {
   RobotMode mode = RobotMode::Autonomous;      ///< who drives the robot at the start
   double sparc_timeout_s = 2.0;                ///< SPARC: a proposal executes after this many seconds unless vetoed
   bool linger = true;                          ///< after the episode, serve until `finalise` or the stop flag
+  bool record = false;                         ///< the bag recorder writes from the start (else paused until the
+                                               ///< page starts it; the scenario's `record: true` also starts it)
+  runner::SignalSource* signals = nullptr;     ///< `sandtray/signals/*` from another source (a ROS graph), or null
   std::function<void(const std::string& url)> on_listening;  ///< told the page's URL once the server listens
   std::function<void(CommandSink)> on_commands;  ///< given the session's command entry (other sources: ROS), then
                                                  ///< an empty one when the session ends
