@@ -21,6 +21,7 @@ struct WebCliOptions {
   bool no_linger = false;          ///< exit when the episode ends instead of waiting for `finalise`
   bool record = false;             ///< the session's bag records from the start
   bool ros = false;                ///< also take `sparc/selected_action` from a ROS master
+  bool graph = false;              ///< also serve the game's topics, services and signals on a ROS master
   double master_timeout_s = 10.0;  ///< how long to wait for it
 };
 

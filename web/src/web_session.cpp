@@ -495,11 +495,13 @@ WebSessionReport serve_web(const runner::Scenario& scenario, std::uint64_t seed,
   runner::EpisodeObservers observers;  // the page first (it adds the tick's events to the session log), then the bag
   observers.push_back(std::make_unique<ObserverRef>(observer));
   observers.push_back(std::make_unique<ObserverRef>(session->recorder()));
+  if (options.also_observe != nullptr) observers.push_back(std::make_unique<ObserverRef>(*options.also_observe));
   FoxgloveCameras foxglove_cameras(server, scenario);
   if (!scenario.cameras.empty()) {  // the scenario's cameras, at their rates: into the bag and to Foxglove
+    std::vector<runner::FrameSink*> sinks{&session->recorder(), &foxglove_cameras};
+    if (options.also_frames != nullptr) sinks.push_back(options.also_frames);
     auto& rig = session->set_cameras(std::make_unique<runner::CameraRig>(
-        scenario, runner::renderer_options(scenario.rendering),
-        std::vector<runner::FrameSink*>{&session->recorder(), &foxglove_cameras}));
+        scenario, runner::renderer_options(scenario.rendering), std::move(sinks)));
     observers.push_back(std::make_unique<ObserverRef>(rig));
   }
   report.result = runner::run_episode(scenario, seed, runner::SharedModels::shipped(), stop, observers, info, nullptr,
