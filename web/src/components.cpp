@@ -31,6 +31,10 @@ void RecorderSwitch::begin(const runner::EpisodeInfo& info) { recorder_->begin({
 
 void RecorderSwitch::observe(const runner::EpisodeSnapshot& s) {
   const bool want = requested_;
+  {
+    std::lock_guard lock(mutex_);
+    last_t_ = s.t;
+  }
   if (want != on_) {
     {
       std::lock_guard lock(mutex_);
@@ -65,7 +69,7 @@ nlohmann::json RecorderSwitch::status() const {
   return {{"state", on_ ? "recording" : "paused"},
           {"folder", recorder_->paths().dir.string()},
           {"messages", recorder_->stats().messages},
-          {"paused_s", paused_s_}};
+          {"paused_s", paused_s_ + (paused_since_ >= 0.0 ? last_t_ - paused_since_ : 0.0)}};
 }
 
 ObserverSwitch::ObserverSwitch(std::unique_ptr<runner::EpisodeObserver> inner, std::string name, SessionLog& log)

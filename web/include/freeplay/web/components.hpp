@@ -47,7 +47,7 @@ class RecorderSwitch final : public runner::EpisodeObserver, public runner::Fram
 
   /// Asks for writing on or off from the next tick (any thread).
   void request(bool on) { requested_ = on; }
-  /// {state: recording|paused, file, messages, paused_s} (any thread).
+  /// {state: recording|paused, folder, messages, paused_s: paused episode seconds so far} (any thread).
   nlohmann::json status() const;
 
   void begin(const runner::EpisodeInfo& info) override;
@@ -67,7 +67,8 @@ class RecorderSwitch final : public runner::EpisodeObserver, public runner::Fram
   std::vector<Event> events_;     // this tick's events (reused)
   mutable std::mutex mutex_;      // status
   double paused_since_ = -1.0;    // episode time the current pause began (< 0: not paused)
-  double paused_s_ = 0.0;         // total paused episode time so far
+  double paused_s_ = 0.0;         // paused episode time of the pauses that ended
+  double last_t_ = 0.0;           // episode time of the last tick seen
 };
 
 /// An observer behind a switch (the camera rig): while stopped it sees no ticks (begin, end and abort always pass).
