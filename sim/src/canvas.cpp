@@ -22,18 +22,16 @@ cv::Vec3b bgr_of(PaletteColour colour) {
   return {static_cast<std::uint8_t>(rgb[2]), static_cast<std::uint8_t>(rgb[1]), static_cast<std::uint8_t>(rgb[0])};
 }
 
-/// Samples the quadratic Bézier from `a` with control `c` to `b` (excluding nothing: both ends included).
-std::vector<cv::Point2d> quadratic(const cv::Point2d& a, const cv::Point2d& c, const cv::Point2d& b) {
+/// Samples the quadratic Bézier from `a` with control `c` to `b` into `out` (both ends included).
+void quadratic(const cv::Point2d& a, const cv::Point2d& c, const cv::Point2d& b, std::vector<cv::Point2d>& out) {
   const double length = cv::norm(c - a) + cv::norm(b - c);
   const int samples = std::clamp(static_cast<int>(std::ceil(length / kCurveStepPx)), 1, kMaxCurveSamples);
-  std::vector<cv::Point2d> out;
-  out.reserve(static_cast<std::size_t>(samples) + 1);
+  out.clear();
   for (int i = 0; i <= samples; ++i) {
     const double t = static_cast<double>(i) / samples;
     const double u = 1.0 - t;
     out.push_back(u * u * a + 2.0 * u * t * c + t * t * b);
   }
-  return out;
 }
 
 }  // namespace
@@ -85,7 +83,8 @@ void DrawingCanvas::extend_stroke(int stroke_id, const Vec2& p) {
   const cv::Point2d point = to_pixel(p);
   if (cv::norm(point - stroke.last_point) < 0.5) return;
   const cv::Point2d mid = 0.5 * (stroke.last_point + point);
-  paint_path(quadratic(stroke.last_mid, stroke.last_point, mid), stroke.colour);
+  quadratic(stroke.last_mid, stroke.last_point, mid, piece_);
+  paint_path(piece_, stroke.colour);
   stroke.last_mid = mid;
   stroke.last_point = point;
 }

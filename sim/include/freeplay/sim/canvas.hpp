@@ -78,7 +78,8 @@ class DrawingCanvas {
   cv::Rect unpublished_;
   mutable std::optional<std::uint64_t> hash_cache_;
   StrokePainter painter_;                // paints each smoothed piece once (anti-aliased coverage)
-  std::vector<cv::Point2d> local_path_;  // the piece being painted, relative to its rectangle
+  std::vector<cv::Point2d> piece_;       // the samples of the piece being painted
+  std::vector<cv::Point2d> local_path_;  // the same relative to its rectangle
 };
 
 /// Fraction of pixels where two BGR CV_8UC3 images of one size differ (a drawing's coverage of its background).
