@@ -1,6 +1,8 @@
 #include "freeplay/policies/asocial.hpp"
 
+#include <array>
 #include <limits>
+#include <stdexcept>
 
 #include "freeplay/core/error.hpp"
 #include "freeplay/core/yaml_schema.hpp"
@@ -44,6 +46,16 @@ bool reachable(const RobotSelf& self, const Vec2& p) {
   return (p - self.arm_reach_centre).norm() < self.arm_reach_radius;
 }
 
+// Farther than this outside a polygon's bounding box, `point_in_polygon` is false: no edge crosses the point's row
+// to its right an odd number of times, and the boundary is farther than its 1e-12 tolerance (rounding is ~1e-16).
+constexpr double kOutsideBoxMargin = 1e-9;
+
+bool outside_box(const std::pair<Vec2, Vec2>& box, const Vec2& p) {
+  const auto& [lo, hi] = box;
+  return p.x() < lo.x() - kOutsideBoxMargin || p.x() > hi.x() + kOutsideBoxMargin ||
+         p.y() < lo.y() - kOutsideBoxMargin || p.y() > hi.y() + kOutsideBoxMargin;
+}
+
 }  // namespace
 
 AsocialPolicy::AsocialPolicy(const YAML::Node& params) {
@@ -67,9 +79,16 @@ void AsocialPolicy::reset(const PolicyContext& /*context*/, Rng rng) {
 }
 
 std::optional<MoveItem> AsocialPolicy::choose_move(const Observation& observation) {
-  auto order = asocial_item_order();
+  // The shuffle draws depend only on the length: shuffling indices gives the original's order of names.
+  const auto& names = asocial_item_order();
+  std::array<std::size_t, 10> order{};
+  if (names.size() != order.size()) throw std::logic_error("asocial_item_order() must list 10 items");
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   rng_.shuffle(order);
-  for (const auto& name : order) {
+  zone_boxes_.resize(observation.zones.size());
+  for (std::size_t z = 0; z < observation.zones.size(); ++z) zone_boxes_[z] = bounds(observation.zones[z].polygon);
+  for (const std::size_t index : order) {
+    const auto& name = names[index];
     const auto* item = observation.item(name);
     if (item == nullptr) continue;  // TF not yet published
     const Vec2 position = item->pose.position();
@@ -77,7 +96,9 @@ std::optional<MoveItem> AsocialPolicy::choose_move(const Observation& observatio
     const auto habitat = asocial_habitats().find(name);
     if (habitat == asocial_habitats().end() || habitat->second.empty()) continue;
     bool already_home = false;
-    for (const auto& zone : observation.zones) {
+    for (std::size_t z = 0; z < observation.zones.size(); ++z) {
+      const auto& zone = observation.zones[z];
+      if (outside_box(zone_boxes_[z], position)) continue;  // point_in_polygon would say false
       for (const auto& colour : habitat->second) {
         if (zone.colour == colour && point_in_polygon(zone.polygon, position)) already_home = true;
       }

@@ -233,7 +233,7 @@ void SimWorld::perceive(const ChildSlot& me, const std::vector<sim::ItemState>& 
   view.present = true;
   if (!child_robot_) {
     const ChildSlot& other = children_[&me == &children_[0] ? 1 : 0];
-    for (const auto& touch : tray_.touches()) {
+    for (const auto& touch : touches_) {
       if (!other.owns_finger(touch.finger) || view.touch_count >= 6) continue;
       view.touches[static_cast<std::size_t>(view.touch_count++)] = {touch.position, agents::item_index(touch.item)};
     }
@@ -273,8 +273,9 @@ void SimWorld::perceive(const ChildSlot& me, const std::vector<sim::ItemState>& 
 
 void SimWorld::step_children(double t) {
   refresh_seen_zones();
-  const auto items = tray_.items();
-  for (std::size_t i = 0; i < children_.size(); ++i) perceive(children_[i], items, t, perceptions_[i]);
+  tray_.items(items_);
+  tray_.touches(touches_);
+  for (std::size_t i = 0; i < children_.size(); ++i) perceive(children_[i], items_, t, perceptions_[i]);
   for (std::size_t i = 0; i < children_.size(); ++i) {
     children_[i].last = child_source_ != nullptr ? child_source_->actions(children_[i].seat_name, t, kTickS)
                                                  : children_[i].agent->step(t, kTickS, perceptions_[i]);
@@ -284,10 +285,11 @@ void SimWorld::step_children(double t) {
 
 /// What the coder sees of both players this tick (children through their actions, the robot as a child sees it).
 void SimWorld::code_players(double t) {
+  tray_.touches(touches_);
   const auto observed = [this](const ChildSlot& c) {
     std::array<agents::SeenTouch, 6> touches{};
     int n = 0;
-    for (const auto& touch : tray_.touches()) {
+    for (const auto& touch : touches_) {
       if (c.owns_finger(touch.finger) && n < 6) touches[static_cast<std::size_t>(n++)] = {touch.position, agents::item_index(touch.item)};
     }
     return agents::observed_child(c.last, touches, n);

@@ -155,6 +155,8 @@ class SimWorld final : public RobotWorld {
   bool coded_robot_touching_ = false;
   int coded_robot_item_ = -1;
   std::array<agents::ChildPerception, 2> perceptions_{};
+  std::vector<sim::ItemState> items_;    // the tray's items, refilled where the tick reads them (no allocation)
+  std::vector<sim::TouchState> touches_;  // the tray's touches, refilled likewise
   std::array<agents::SeenZone, agents::kMaxSeenZones> seen_zones_{};
   int seen_zone_count_ = 0;
   std::uint64_t seen_zones_version_ = ~std::uint64_t{0};

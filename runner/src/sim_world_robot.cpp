@@ -20,7 +20,8 @@ policies::Observation& SimWorld::observe(double t, bool perceive_children) {
   policies::Observation& o = observation_;
   o.t = t;
   o.items.clear();
-  for (const auto& item : tray_.items()) {
+  tray_.items(items_);
+  for (const auto& item : items_) {
     policies::ItemObservation obs;
     obs.name = item.name;
     obs.pose = item.pose;
@@ -36,7 +37,8 @@ policies::Observation& SimWorld::observe(double t, bool perceive_children) {
     observed_zones_version_ = seen_zones_version_;
   }
   o.touches.clear();
-  for (const auto& touch : tray_.touches()) o.touches.push_back({touch.finger, touch.position});
+  tray_.touches(touches_);
+  for (const auto& touch : touches_) o.touches.push_back({touch.finger, touch.position});
   o.children.clear();
   o.self = {};
   o.interaction_events = std::move(pending_interaction_events_);
@@ -50,7 +52,7 @@ policies::Observation& SimWorld::observe(double t, bool perceive_children) {
     truth.speaking = c.speaking(t);
     truth.speech_to_partner = c.last.speech && c.last.speech->to == agents::Addressee::Partner;
     truth.seconds_since_touch = t - c.last_touch_t;
-    for (const auto& touch : tray_.touches()) {
+    for (const auto& touch : touches_) {
       if (c.owns_finger(touch.finger) && !touch.item.empty()) truth.moving_item = touch.item;
     }
     o.children.push_back(perception_->perceive(truth, t));
@@ -99,7 +101,8 @@ void SimWorld::move_ended(const policies::MoveItem& /*move*/, planning::MoveStat
 
 void SimWorld::look_at_point(const Eigen::Vector3d& point) {
   robot_gaze_ = {RobotGaze::Kind::Tray, ""};
-  for (const auto& item : tray_.items()) {
+  tray_.items(items_);
+  for (const auto& item : items_) {
     if ((item.pose.position() - point.head<2>()).norm() < kGazeOnItemM) robot_gaze_ = {RobotGaze::Kind::Item, item.name};
   }
   body_->look_at(point);

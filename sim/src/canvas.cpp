@@ -14,28 +14,24 @@
 namespace freeplay::sim {
 namespace {
 
-constexpr int kShiftBits = 3;  // sub-pixel precision of the stroke polylines
-constexpr double kShiftScale = 1 << kShiftBits;
 constexpr double kCurveStepPx = 4.0;  // spacing of the samples of a quadratic segment
 constexpr int kMaxCurveSamples = 32;
 
-cv::Scalar bgr_of(PaletteColour colour) {
+cv::Vec3b bgr_of(PaletteColour colour) {
   const auto rgb = palette_rgb(colour);
-  return {static_cast<double>(rgb[2]), static_cast<double>(rgb[1]), static_cast<double>(rgb[0])};
+  return {static_cast<std::uint8_t>(rgb[2]), static_cast<std::uint8_t>(rgb[1]), static_cast<std::uint8_t>(rgb[0])};
 }
 
-/// Samples the quadratic Bézier from `a` with control `c` to `b` (excluding nothing: both ends included).
-std::vector<cv::Point2d> quadratic(const cv::Point2d& a, const cv::Point2d& c, const cv::Point2d& b) {
+/// Samples the quadratic Bézier from `a` with control `c` to `b` into `out` (both ends included).
+void quadratic(const cv::Point2d& a, const cv::Point2d& c, const cv::Point2d& b, std::vector<cv::Point2d>& out) {
   const double length = cv::norm(c - a) + cv::norm(b - c);
   const int samples = std::clamp(static_cast<int>(std::ceil(length / kCurveStepPx)), 1, kMaxCurveSamples);
-  std::vector<cv::Point2d> out;
-  out.reserve(static_cast<std::size_t>(samples) + 1);
+  out.clear();
   for (int i = 0; i <= samples; ++i) {
     const double t = static_cast<double>(i) / samples;
     const double u = 1.0 - t;
     out.push_back(u * u * a + 2.0 * u * t * c + t * t * b);
   }
-  return out;
 }
 
 }  // namespace
@@ -87,7 +83,8 @@ void DrawingCanvas::extend_stroke(int stroke_id, const Vec2& p) {
   const cv::Point2d point = to_pixel(p);
   if (cv::norm(point - stroke.last_point) < 0.5) return;
   const cv::Point2d mid = 0.5 * (stroke.last_point + point);
-  paint_path(quadratic(stroke.last_mid, stroke.last_point, mid), stroke.colour);
+  quadratic(stroke.last_mid, stroke.last_point, mid, piece_);
+  paint_path(piece_, stroke.colour);
   stroke.last_mid = mid;
   stroke.last_point = point;
 }
@@ -119,22 +116,13 @@ void DrawingCanvas::paint_path(const std::vector<cv::Point2d>& path, PaletteColo
                         cv::Point(static_cast<int>(std::ceil(max_x + radius)) + 1, static_cast<int>(std::ceil(max_y + radius)) + 1));
   const cv::Rect roi = bounds & cv::Rect(0, 0, image_.cols, image_.rows);
   if (roi.empty()) return;  // entirely off the canvas
-  std::vector<cv::Point> fixed;
-  fixed.reserve(path.size() + 1);
-  for (const auto& p : path) {
-    fixed.emplace_back(static_cast<int>(std::lround((p.x - roi.x) * kShiftScale)),
-                       static_cast<int>(std::lround((p.y - roi.y) * kShiftScale)));
-  }
-  if (fixed.size() == 1) fixed.push_back(fixed.front());  // a dot: a zero-length segment with round caps
-  const std::vector<std::vector<cv::Point>> lines = {fixed};
+  local_path_.clear();
+  for (const auto& p : path) local_path_.emplace_back(p.x - roi.x, p.y - roi.y);
   cv::Mat target = image_(roi);
   if (colour == PaletteColour::Eraser) {
-    // destination-out: the background shows through where the eraser passes.
-    cv::Mat mask = cv::Mat::zeros(roi.size(), CV_8UC1);
-    cv::polylines(mask, lines, false, cv::Scalar(255), stroke_width_px_, cv::LINE_8, kShiftBits);
-    background_(roi).copyTo(target, mask);
+    painter_.erase(target, background_(roi), local_path_, stroke_width_px_);  // destination-out
   } else {
-    cv::polylines(target, lines, false, bgr_of(colour), stroke_width_px_, cv::LINE_AA, kShiftBits);
+    painter_.paint(target, local_path_, stroke_width_px_, bgr_of(colour));
   }
   touch(roi);
 }

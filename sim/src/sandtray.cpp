@@ -222,10 +222,21 @@ struct Sandtray::Impl {
   }
 
   // --- helpers --------------------------------------------------------------------------------------------
+  // wrap_angle(angle) without its libm call for the angles a body has after at most one turn: std::remainder is
+  // exact, so within (-π, π] it returns the angle itself, and within (π, 3π) or (-3π, -π) the angle ∓ 2π, which the
+  // subtraction gives exactly (Sterbenz: the operands are within a factor of 2 of each other).
+  static double wrap_body_angle(double angle) {
+    constexpr double kPi = std::numbers::pi;
+    if (angle > -kPi && angle <= kPi) return angle;
+    if (angle > kPi && angle < 3 * kPi) return angle - 2 * kPi;
+    if (angle < -kPi && angle > -3 * kPi) return angle + 2 * kPi;
+    return wrap_angle(angle);
+  }
+
   Pose2 pose_of(const Item& item) const {
     const b2Vec2 p = item.body->GetPosition();
     const Vec2 position = from_b2(p);
-    return {position.x(), position.y(), wrap_angle(static_cast<double>(item.body->GetAngle()))};
+    return {position.x(), position.y(), wrap_body_angle(static_cast<double>(item.body->GetAngle()))};
   }
 
   double seconds() const { return static_cast<double>(now) * 1e-9; }
@@ -793,16 +804,20 @@ ItemState Sandtray::item(const std::string& name) const {
 
 std::vector<TouchState> Sandtray::touches() const {
   std::vector<TouchState> out;
+  touches(out);
+  return out;
+}
+
+void Sandtray::touches(std::vector<TouchState>& out) const {
+  out.clear();
   for (int f = 1; f <= kMaxTouches; ++f) {
     const auto& finger = impl_->fingers[static_cast<std::size_t>(f)];
     if (!finger.down) continue;
-    TouchState t;
+    TouchState& t = out.emplace_back();
     t.finger = f;
     t.position = finger.position;
     if (finger.mode == Impl::FingerMode::Item) t.item = impl_->items[static_cast<std::size_t>(finger.item)].spec->name;
-    out.push_back(std::move(t));
   }
-  return out;
 }
 
 std::optional<std::string> Sandtray::item_at(const Vec2& p) const {

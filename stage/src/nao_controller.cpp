@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "freeplay/core/error.hpp"
@@ -32,6 +33,9 @@ Eigen::Quaterniond quat_at(const mjtNum* q) { return {q[0], q[1], q[2], q[3]}; }
 // without recomputing the whole scene.
 class ArmChain {
  public:
+  static constexpr size_t kMaxBodies = 16;
+  using Key = std::array<double, 7 + kMaxBodies>;  // base position, base quaternion (w, x, y, z), the chain's qpos
+
   ArmChain(const mjModel* m, const NaoIndex& nao) : m_(m), site_(nao.fingertip_site) {
     for (int body = m->site_bodyid[site_]; body > 0; body = m->body_parentid[body]) {
       bodies_.push_back(body);
@@ -89,6 +93,57 @@ class ArmChain {
     return tip;
   }
 
+  // Inputs of one `fingertip` call with its Jacobian, and what it gave; compared bit for bit.
+  struct Evaluation {
+    Key key{};
+    Vector3d tip = Vector3d::Zero();
+    Eigen::Matrix<double, 3, 5> jacobian = Eigen::Matrix<double, 3, 5>::Zero();
+    bool valid = false;
+  };
+  // Remembered evaluations (see NaoController::solve_pointing): the last pose of the latest first solve and retry,
+  // and the retry's seed pose.
+  enum Slot : std::size_t { kLastOfFirst, kLastOfRetry, kRetrySeed, kSlots };
+
+  // The key of a `fingertip` call.
+  Key key(const Vector3d& base_pos, const Eigen::Quaterniond& base_quat, const mjtNum* qpos) const {
+    Key k{};
+    for (int i = 0; i < 3; ++i) k[static_cast<size_t>(i)] = base_pos[i];
+    k[3] = base_quat.w();
+    k[4] = base_quat.x();
+    k[5] = base_quat.y();
+    k[6] = base_quat.z();
+    size_t n = 7;
+    for (const int body : bodies_) {
+      for (int j = m_->body_jntadr[body]; j < m_->body_jntadr[body] + m_->body_jntnum[body] && n < k.size(); ++j) {
+        k[n++] = qpos[m_->jnt_qposadr[j]];
+      }
+    }
+    return k;
+  }
+
+  // `fingertip` with its Jacobian, answered from a remembered evaluation with bit-identical inputs when there is one.
+  Vector3d fingertip_recalled(const Vector3d& base_pos, const Eigen::Quaterniond& base_quat, const mjtNum* qpos,
+                              Eigen::Matrix<double, 3, 5>* jacobian) {
+    const auto k = key(base_pos, base_quat, qpos);
+    for (const Evaluation& e : memo_) {
+      if (e.valid && std::memcmp(e.key.data(), k.data(), sizeof(double) * k.size()) == 0) {
+        *jacobian = e.jacobian;
+        return e.tip;
+      }
+    }
+    return fingertip(base_pos, base_quat, qpos, jacobian);
+  }
+
+  // Remembers the evaluation `fingertip(base_pos, base_quat, qpos, &jacobian) == tip` in `slot`.
+  void remember(Slot slot, const Vector3d& base_pos, const Eigen::Quaterniond& base_quat, const mjtNum* qpos,
+                const Vector3d& tip, const Eigen::Matrix<double, 3, 5>& jacobian) {
+    Evaluation& e = memo_[slot];
+    e.key = key(base_pos, base_quat, qpos);
+    e.tip = tip;
+    e.jacobian = jacobian;
+    e.valid = true;
+  }
+
   // True when every joint of the chain is a hinge (what `fingertip` models).
   bool only_hinges() const {
     for (const int body : bodies_) {
@@ -100,13 +155,13 @@ class ArmChain {
   }
 
  private:
-  static constexpr size_t kMaxBodies = 16;
   const mjModel* m_;
   int site_;
   std::vector<int> bodies_;
   std::array<int, kMaxBodies> columns_{};
   std::array<Vector3d, kMaxBodies> anchors_{};
   std::array<Vector3d, kMaxBodies> axes_{};
+  std::array<Evaluation, kSlots> memo_{};
 };
 
 NaoController::NaoController(Stage& stage) : stage_(stage), nao_(stage.model().nao()) {
@@ -248,7 +303,8 @@ GazeResult NaoController::look_at(const Eigen::Vector3d& point) {
   return result;
 }
 
-PointingResult NaoController::solve_pointing(const Vector3d& target, const NaoJointVector& seed, NaoJointVector* out) {
+PointingResult NaoController::solve_pointing(const Vector3d& target, const NaoJointVector& seed, bool retry,
+                                             NaoJointVector* out) {
   const mjModel* m = stage_.model().mj();
   if (scratch_ == nullptr) scratch_ = mj_makeData(m);
   mju_copy(scratch_->qpos, stage_.data()->qpos, m->nq);
@@ -276,12 +332,24 @@ PointingResult NaoController::solve_pointing(const Vector3d& target, const NaoJo
   constexpr double kDamping = 0.01;
   Vector3d fingertip = Vector3d::Zero();
   double previous_error = std::numeric_limits<double>::infinity();
+  // The chain is evaluated where the loop stops, so that pose needs no second evaluation; it and the retry's seed
+  // pose are remembered, since the next solve usually starts from one of them (bit-identical inputs, same result).
+  bool stopped = false;
   for (int iteration = 0; iteration < 150; ++iteration) {
-    fingertip = arm_chain_->fingertip(base_pos, base_quat, scratch_->qpos, &j);
+    fingertip = iteration == 0 ? arm_chain_->fingertip_recalled(base_pos, base_quat, scratch_->qpos, &j)
+                               : arm_chain_->fingertip(base_pos, base_quat, scratch_->qpos, &j);
+    if (iteration == 0 && retry) {
+      arm_chain_->remember(ArmChain::kRetrySeed, base_pos, base_quat, scratch_->qpos, fingertip, j);
+    }
     const Vector3d error = (target - fingertip).cwiseProduct(weights);
-    if (error.head<2>().norm() < 1e-4 && std::abs(error.z()) < 1e-3) break;
     // Out of reach, the arm stretches towards the target and the error stops shrinking: stop there.
-    if (iteration >= 8 && previous_error - error.norm() < 1e-5) break;
+    stopped = (error.head<2>().norm() < 1e-4 && std::abs(error.z()) < 1e-3) ||
+              (iteration >= 8 && previous_error - error.norm() < 1e-5);
+    if (stopped) {
+      arm_chain_->remember(retry ? ArmChain::kLastOfRetry : ArmChain::kLastOfFirst, base_pos, base_quat,
+                           scratch_->qpos, fingertip, j);
+      break;
+    }
     previous_error = error.norm();
     Eigen::Matrix<double, 5, 1> q, lo, hi, preferred;
     for (size_t c = 0; c < kRightArm.size(); ++c) {
@@ -305,7 +373,7 @@ PointingResult NaoController::solve_pointing(const Vector3d& target, const NaoJo
       scratch_->qpos[nao_.qpos[static_cast<size_t>(kRightArm[c])]] = q[static_cast<Eigen::Index>(c)];
     }
   }
-  fingertip = arm_chain_->fingertip(base_pos, base_quat, scratch_->qpos, nullptr);
+  if (!stopped) fingertip = arm_chain_->fingertip(base_pos, base_quat, scratch_->qpos, nullptr);
   *out = seed;
   for (int k : kRightArm) (*out)[static_cast<size_t>(k)] = scratch_->qpos[nao_.qpos[static_cast<size_t>(k)]];
   PointingResult result;
@@ -320,12 +388,12 @@ PointingResult NaoController::point_at(const Eigen::Vector2d& screen_point) {
   if (!screen_point.allFinite()) throw InputError("pointing target is not finite", "screen point");
   const Vector3d target(screen_point.x(), screen_point.y(), kHoverHeight);
   NaoJointVector solution{};
-  PointingResult best = solve_pointing(target, targets_, &solution);
+  PointingResult best = solve_pointing(target, targets_, false, &solution);
   if (!best.reachable) {
     NaoJointVector seed = targets_;
     for (size_t c = 0; c < kRightArm.size(); ++c) seed[static_cast<size_t>(kRightArm[c])] = kPointingSeed[c];
     NaoJointVector second{};
-    const PointingResult retry = solve_pointing(target, seed, &second);
+    const PointingResult retry = solve_pointing(target, seed, true, &second);
     if (retry.error_m < best.error_m) {
       best = retry;
       solution = second;

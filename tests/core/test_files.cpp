@@ -36,3 +36,15 @@ TEST(EventLog, HashChangesWithContent) {
   EXPECT_NE(a.hash(), b.hash());
   EXPECT_EQ(b.to_jsonl().find("\"type\":\"x\"") != std::string::npos, true);
 }
+
+TEST(EventLog, IncrementalTextAndHashEqualTheEventsSerialisedAgain) {
+  EventLog log;
+  log.emit({0.5, "child.purple", "stroke_finished", {{"colour", "blue"}, {"points", {1, 2.5, -3e-7}}}});
+  log.append({{1.25, "sandtray", "releasing_zebra", nullptr}, {2.0, "robot", "say", {{"text", "h\u00e9 \"x\"\n"}}}});
+  std::string rebuilt;
+  for (const auto& e : log.events()) rebuilt += e.to_json().dump() + '\n';
+  EXPECT_EQ(log.to_jsonl(), rebuilt);
+  EXPECT_EQ(log.hash(), fnv1a64(rebuilt));
+  EXPECT_EQ(log.events()[0].data.at("colour"), "blue");  // the data survives its serialisation
+  EXPECT_EQ(EventLog{}.hash(), fnv1a64(""));
+}

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <numbers>
 
 #include "freeplay/core/geometry.hpp"
@@ -35,4 +36,14 @@ TEST(Geometry, CentroidsOfTriangle) {
   const Polygon2 tri = {{0, 0}, {3, 0}, {0, 3}};
   EXPECT_TRUE(vertex_mean(tri).isApprox(Vec2(1, 1)));
   EXPECT_TRUE(area_centroid(tri).isApprox(Vec2(1, 1)));
+}
+
+TEST(Geometry, WrapAngleKeepsAnglesInItsRangeAndShiftsOneTurnExactly) {
+  // The sandtray's item poses skip wrap_angle's libm call on these ranges (sim/src/sandtray.cpp): same values.
+  constexpr double kPi = std::numbers::pi;
+  for (const double a : {std::nextafter(-kPi, 0.0), -1.0, 0.0, 2.5, kPi}) EXPECT_EQ(wrap_angle(a), a) << a;
+  for (const double a : {std::nextafter(kPi, 4.0), 4.0, 7.5, std::nextafter(3 * kPi, 0.0)}) {
+    EXPECT_EQ(wrap_angle(a), a - 2 * kPi) << a;
+    EXPECT_EQ(wrap_angle(-a), -a + 2 * kPi) << a;
+  }
 }

@@ -74,6 +74,21 @@ TEST(Asocial, SkipsItemsAlreadyHomeAndItemsOutOfReach) {
   EXPECT_EQ(move->item, "elephant");
 }
 
+TEST(Asocial, AnItemOnAHabitatsEdgeIsHomeAndJustOutsideIsNot) {
+  // The bounding-box prefilter must keep point_in_polygon's answer on and near the boundary.
+  const auto zone = square_zone("blue", {0.2, -0.1}, 0.03);
+  for (const Vec2& p : {Vec2(0.23, -0.1), Vec2(0.17, -0.13), Vec2(0.2, -0.07)}) {
+    AsocialPolicy policy({});
+    policy.reset({}, Rng(7));
+    EXPECT_FALSE(policy.choose_move(tray_with({item("hippo", p.x(), p.y())}, {zone})).has_value()) << p.transpose();
+  }
+  for (const Vec2& p : {Vec2(0.23 + 1e-7, -0.1), Vec2(0.2, -0.13 - 1e-7)}) {
+    AsocialPolicy policy({});
+    policy.reset({}, Rng(7));
+    EXPECT_TRUE(policy.choose_move(tray_with({item("hippo", p.x(), p.y())}, {zone})).has_value()) << p.transpose();
+  }
+}
+
 TEST(Asocial, UnreachableCentroidsAreNotTargets) {
   AsocialPolicy policy({});
   policy.reset({}, Rng(5));

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "freeplay/core/rng.hpp"
+
 namespace freeplay {
 
 /// One event: simulated time, emitting component, type (e.g. `releasing_zebra`) and free-form data.
@@ -20,26 +22,29 @@ struct Event {
   nlohmann::json to_json() const;
 };
 
-/// An append-only, ordered list of events with a stable content hash.
+/// An append-only, ordered list of events with a stable content hash. Each event is serialised once, when it is
+/// appended: the JSON Lines text and its hash grow with the log instead of being rebuilt from it.
 class EventLog {
  public:
   /// Appends one event.
-  void emit(Event event) { events_.push_back(std::move(event)); }
+  void emit(Event event);
   /// Appends every event of `more`, in order.
-  void append(const std::vector<Event>& more) { events_.insert(events_.end(), more.begin(), more.end()); }
+  void append(const std::vector<Event>& more);
   /// All events in emission order.
   const std::vector<Event>& events() const { return events_; }
   /// Number of events.
   std::size_t size() const { return events_.size(); }
-  /// The log as JSON Lines (one compact object per line).
-  std::string to_jsonl() const;
+  /// The log as JSON Lines (one compact `Event::to_json()` object per line).
+  const std::string& to_jsonl() const { return jsonl_; }
   /// FNV-1a hash of `to_jsonl()`: equal logs give equal hashes on the same machine.
-  std::uint64_t hash() const;
+  std::uint64_t hash() const { return hash_; }
   /// Writes `to_jsonl()` atomically to `path`.
   void write_jsonl(const std::filesystem::path& path) const;
 
  private:
   std::vector<Event> events_;
+  std::string jsonl_;                             // to_jsonl(), one line per event of events_
+  std::uint64_t hash_ = fnv1a64(std::string_view{});  // FNV-1a of jsonl_, extended line by line
 };
 
 }  // namespace freeplay

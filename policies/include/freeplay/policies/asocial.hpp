@@ -4,6 +4,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "freeplay/policies/play_policy.hpp"
@@ -31,6 +32,7 @@ class AsocialPolicy final : public PlayPolicy {
   std::optional<MoveItem> choose_move(const Observation& observation);
 
  private:
+  std::vector<std::pair<Vec2, Vec2>> zone_boxes_;  // bounds() of the observation's zones, rebuilt by choose_move
   double pause_min_s_ = 1.2;
   double pause_max_s_ = 2.5;
   double idle_pause_s_ = 0.3;

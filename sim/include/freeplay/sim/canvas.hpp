@@ -11,6 +11,7 @@
 #include "freeplay/core/geometry.hpp"
 #include "freeplay/sim/background.hpp"
 #include "freeplay/sim/screen.hpp"
+#include "freeplay/sim/stroke_painter.hpp"
 
 namespace freeplay::sim {
 
@@ -76,6 +77,9 @@ class DrawingCanvas {
   bool dirty_ = true;
   cv::Rect unpublished_;
   mutable std::optional<std::uint64_t> hash_cache_;
+  StrokePainter painter_;                // paints each smoothed piece once (anti-aliased coverage)
+  std::vector<cv::Point2d> piece_;       // the samples of the piece being painted
+  std::vector<cv::Point2d> local_path_;  // the same relative to its rectangle
 };
 
 /// Fraction of pixels where two BGR CV_8UC3 images of one size differ (a drawing's coverage of its background).

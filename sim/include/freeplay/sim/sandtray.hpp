@@ -153,6 +153,8 @@ class Sandtray {
   ItemState item(const std::string& name) const;
   /// Active fingers.
   std::vector<TouchState> touches() const;
+  /// The same into `out`, reusing its storage (for the 10 Hz tick).
+  void touches(std::vector<TouchState>& out) const;
   /// The top-most visible item under `p`, if any.
   std::optional<std::string> item_at(const Vec2& p) const;
   /// Footprint of an item in the `sandtray` frame (current pose).

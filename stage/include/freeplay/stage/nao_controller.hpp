@@ -85,7 +85,8 @@ class NaoController {
  private:
   void write_targets();
   void place_base(const NaoJointVector& posture);
-  PointingResult solve_pointing(const Eigen::Vector3d& target, const NaoJointVector& seed, NaoJointVector* out);
+  PointingResult solve_pointing(const Eigen::Vector3d& target, const NaoJointVector& seed, bool retry,
+                                NaoJointVector* out);
 
   Stage& stage_;
   const NaoIndex& nao_;

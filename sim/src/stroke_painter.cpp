@@ -1,0 +1,167 @@
+#include "freeplay/sim/stroke_painter.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "freeplay/core/error.hpp"
+
+namespace freeplay::sim {
+namespace {
+
+// One segment a–b of a polyline with what every row and pixel test needs of it.
+struct Segment {
+  cv::Point2d a, b, ab;
+  double length = 0.0;
+  double length2 = 0.0;
+  cv::Point2d u, n;  // unit direction and normal (zero for a dot)
+
+  Segment(const cv::Point2d& from, const cv::Point2d& to) : a(from), b(to), ab(to - from) {
+    length2 = ab.dot(ab);
+    length = std::sqrt(length2);
+    if (length > 0.0) {
+      u = ab / length;
+      n = {-u.y, u.x};
+    }
+  }
+
+  // The x-interval of row `y` within distance `t` (a capsule: convex, so the hull of what its two discs and its
+  // rectangle cut from the row). False when the row misses it.
+  bool row_interval(double y, double t, double& lo, double& hi) const {
+    lo = std::numeric_limits<double>::infinity();
+    hi = -lo;
+    for (const cv::Point2d* c : {&a, &b}) {
+      const double dy = y - c->y;
+      if (std::abs(dy) > t) continue;
+      const double h = std::sqrt(t * t - dy * dy);
+      lo = std::min(lo, c->x - h);
+      hi = std::max(hi, c->x + h);
+    }
+    if (length > 0.0) {
+      // Along the segment 0 ≤ (p − a)·u ≤ length and across it |(p − a)·n| ≤ t, each linear in x along the row.
+      double x0 = -std::numeric_limits<double>::infinity();
+      double x1 = -x0;
+      const double dy = y - a.y;
+      const auto clip = [&x0, &x1](double slope, double offset, double low, double high) {
+        if (std::abs(slope) < 1e-12) {
+          if (offset < low || offset > high) x0 = x1 + 1.0;  // empty
+          return;
+        }
+        double e0 = (low - offset) / slope;
+        double e1 = (high - offset) / slope;
+        if (e0 > e1) std::swap(e0, e1);
+        x0 = std::max(x0, e0);
+        x1 = std::min(x1, e1);
+      };
+      clip(u.x, -a.x * u.x + dy * u.y, 0.0, length);
+      clip(n.x, -a.x * n.x + dy * n.y, -t, t);
+      if (x0 <= x1) {
+        lo = std::min(lo, x0);
+        hi = std::max(hi, x1);
+      }
+    }
+    return lo <= hi;
+  }
+
+  // Distance from `p` to the segment.
+  double distance(double px, double py) const {
+    const double dx = px - a.x;
+    const double dy = py - a.y;
+    const double s = length2 > 0.0 ? std::clamp((dx * ab.x + dy * ab.y) / length2, 0.0, 1.0) : 0.0;
+    const double ex = dx - s * ab.x;
+    const double ey = dy - s * ab.y;
+    return std::sqrt(ex * ex + ey * ey);
+  }
+};
+
+}  // namespace
+
+void StrokePainter::cover(const std::vector<cv::Point2d>& path, double width_px, int cols, int rows) {
+  const auto size = static_cast<std::size_t>(cols) * static_cast<std::size_t>(rows);
+  if (coverage_.size() < size) coverage_.resize(size, 0);
+  span_lo_.assign(static_cast<std::size_t>(rows), cols);
+  span_hi_.assign(static_cast<std::size_t>(rows), -1);
+  const double outer = 0.5 * width_px + 0.5;  // coverage > 0 below this distance
+  const double inner = 0.5 * width_px - 0.5;  // coverage 1 up to this distance
+  const std::size_t segments = path.size() > 1 ? path.size() - 1 : 1;
+  for (std::size_t k = 0; k < segments; ++k) {
+    const Segment segment(path[k], path[std::min(k + 1, path.size() - 1)]);
+    const int y0 = std::max(0, static_cast<int>(std::ceil(std::min(segment.a.y, segment.b.y) - outer)));
+    const int y1 = std::min(rows - 1, static_cast<int>(std::floor(std::max(segment.a.y, segment.b.y) + outer)));
+    for (int y = y0; y <= y1; ++y) {
+      double lo = 0.0;
+      double hi = 0.0;
+      if (!segment.row_interval(y, outer, lo, hi)) continue;
+      const int x0 = std::max(0, static_cast<int>(std::ceil(lo)));
+      const int x1 = std::min(cols - 1, static_cast<int>(std::floor(hi)));
+      if (x0 > x1) continue;
+      // Fully covered pixels [f0, f1] (none when f0 > f1); the rest of [x0, x1] is the anti-aliased rim.
+      int f0 = x1 + 1;
+      int f1 = x1;
+      double in_lo = 0.0;
+      double in_hi = 0.0;
+      if (inner > 0.0 && segment.row_interval(y, inner, in_lo, in_hi)) {
+        f0 = std::max(x0, static_cast<int>(std::ceil(in_lo)));
+        f1 = std::min(x1, static_cast<int>(std::floor(in_hi)));
+        if (f0 > f1) f0 = x1 + 1, f1 = x1;
+      }
+      std::uint8_t* row = coverage_.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(cols);
+      const auto rim = [&](int from, int to) {
+        for (int x = from; x <= to; ++x) {
+          if (row[x] == 255) continue;  // nothing can add to full coverage
+          const double a = std::clamp(outer - segment.distance(x, y), 0.0, 1.0);
+          row[x] = std::max(row[x], static_cast<std::uint8_t>(255.0 * a + 0.5));
+        }
+      };
+      if (f0 <= f1) {
+        rim(x0, f0 - 1);
+        std::fill(row + f0, row + f1 + 1, std::uint8_t{255});
+        rim(f1 + 1, x1);
+      } else {
+        rim(x0, x1);
+      }
+      span_lo_[static_cast<std::size_t>(y)] = std::min(span_lo_[static_cast<std::size_t>(y)], x0);
+      span_hi_[static_cast<std::size_t>(y)] = std::max(span_hi_[static_cast<std::size_t>(y)], x1);
+    }
+  }
+}
+
+template <typename SourceOf>
+void StrokePainter::blend(cv::Mat& target, const std::vector<cv::Point2d>& path, double width_px, SourceOf source_of) {
+  if (target.type() != CV_8UC3) throw InputError("strokes are painted into BGR images", "target", "CV_8UC3");
+  if (path.empty()) return;
+  cover(path, width_px, target.cols, target.rows);
+  for (int y = 0; y < target.rows; ++y) {
+    const int lo = span_lo_[static_cast<std::size_t>(y)];
+    const int hi = span_hi_[static_cast<std::size_t>(y)];
+    std::uint8_t* row = coverage_.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(target.cols);
+    auto* pixels = target.ptr<cv::Vec3b>(y);
+    for (int x = lo; x <= hi; ++x) {
+      const int a = row[x];
+      if (a == 0) continue;
+      row[x] = 0;  // the buffer is all 0 again after the call
+      const cv::Vec3b source = source_of(y, x);
+      if (a == 255) {
+        pixels[x] = source;
+        continue;
+      }
+      for (int c = 0; c < 3; ++c) {
+        pixels[x][c] = static_cast<std::uint8_t>((pixels[x][c] * (255 - a) + source[c] * a + 127) / 255);
+      }
+    }
+  }
+}
+
+void StrokePainter::paint(cv::Mat& target, const std::vector<cv::Point2d>& path, double width_px, const cv::Vec3b& bgr) {
+  blend(target, path, width_px, [&bgr](int, int) { return bgr; });
+}
+
+void StrokePainter::erase(cv::Mat& target, const cv::Mat& background, const std::vector<cv::Point2d>& path,
+                          double width_px) {
+  if (background.type() != CV_8UC3 || background.size() != target.size()) {
+    throw InputError("erasing needs a BGR background of the target's size", "background", "CV_8UC3, same size");
+  }
+  blend(target, path, width_px, [&background](int y, int x) { return background.at<cv::Vec3b>(y, x); });
+}
+
+}  // namespace freeplay::sim
