@@ -175,6 +175,7 @@ struct RecordSettings {
   int chunk_kb = 768;                 ///< bag chunk size (rosbag's default): at most this much is lost on a kill
   std::string compression = "none";   ///< bag chunk compression: "none" (as the real bags), "lz4", "bz2"
   int encoder_threads = 2;            ///< threads compressing camera images (0: on the episode's own thread)
+  std::string voice = "babble";       ///< speech synthesiser of the audio: "babble" (ours) or "espeak" (espeak-ng)
 
   /// The keys of the `record:` map besides `bag`.
   template <typename Archive>
@@ -185,6 +186,8 @@ struct RecordSettings {
     a.field("compression", compression, Schema::enumeration({"none", "lz4", "bz2"}));
     a.field("encoder_threads", encoder_threads, Schema::integer(0, 64),
             "threads compressing camera images (0: the episode's thread)");
+    a.field("voice", voice, Schema::enumeration({"babble", "espeak"}),
+            "speech synthesiser of the audio: babble (ours) or espeak (espeak-ng, GPL-3; only in binaries built with it)");
   }
 };
 
