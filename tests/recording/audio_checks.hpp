@@ -41,4 +41,24 @@ inline int expect_utterances_heard(const std::vector<float>& samples, const std:
   return checked;
 }
 
+/// The lag (samples, ≤ `max_lag`) at which `delayed` best matches `original` (normalised cross-correlation), expecting
+/// the match to be close (correlation above 0.9).
+inline std::size_t delay_of(const std::vector<float>& delayed, const std::vector<float>& original, std::size_t max_lag) {
+  std::size_t best_lag = 0;
+  double best = -1.0;
+  for (std::size_t lag = 0; lag <= max_lag && lag < delayed.size(); ++lag) {
+    double c = 0.0, a = 0.0, b = 0.0;
+    for (std::size_t i = 0; i < original.size() && i + lag < delayed.size(); ++i) {
+      const double x = original[i], y = delayed[i + lag];
+      c += x * y;
+      a += x * x;
+      b += y * y;
+    }
+    const double r = c / (std::sqrt(a * b) + 1e-12);
+    if (r > best) best = r, best_lag = lag;
+  }
+  EXPECT_GT(best, 0.9) << "the decoded sound does not match the original at any lag up to " << max_lag;
+  return best_lag;
+}
+
 }  // namespace freeplay::recording::audio_checks

@@ -387,6 +387,14 @@ TEST(Audio, EveryUtteranceIsHeardWhereTheEventsSayAndTheBagCarriesTheMp3) {
   const auto samples = read_wav(dir / "audio" / "freeplay_camera_purple_audio.wav");
   EXPECT_NEAR(static_cast<double>(samples.size()), r.result.simulated_s * kAudioRate, 2.0);
   EXPECT_GT(audio_checks::expect_utterances_heard(samples, r.result.events.events()), 0);
+  // The chunks decode (LAME's decoder) to that sound, delayed by the codec: the speech is where the events say there.
+  const auto decoded = decode_mp3(chunks);
+  const std::size_t delay = audio_checks::delay_of(decoded, samples, 2000);
+  EXPECT_NEAR(static_cast<double>(delay), 1105.0, 50.0);  // LAME's encoder (576 + 529 samples) and decoder delay
+  ASSERT_GT(decoded.size(), delay + samples.size() - 2 * kMp3FrameSamples);
+  EXPECT_GT(audio_checks::expect_utterances_heard(std::vector<float>(decoded.begin() + static_cast<std::ptrdiff_t>(delay), decoded.end()),
+                                                  r.result.events.events()),
+            0);
   // Deterministic per seed: the same episode gives the same sound.
   const auto again = record_episode("cr-again", "child-robot");
   EXPECT_EQ(bytes_of(dir / "audio" / "freeplay_camera_purple_audio.mp3"),

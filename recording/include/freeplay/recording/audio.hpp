@@ -68,5 +68,8 @@ class MicrophoneStream {
 std::vector<double> voice_onsets_s(const std::vector<float>& samples, double min_silence_s = 0.3);
 /// The 16-bit mono samples of a WAV file written by MicrophoneStream, as floats in [−1, 1].
 std::vector<float> read_wav(const std::filesystem::path& file);
+/// The mono samples an MP3 stream (e.g. a microphone topic's chunks concatenated) decodes to, as floats in [−1, 1],
+/// by LAME's own decoder (hip); the decoder's delay is kept (≈ 1 100 samples at 16 kHz).
+std::vector<float> decode_mp3(const std::vector<std::uint8_t>& mp3);
 
 }  // namespace freeplay::recording
