@@ -47,9 +47,8 @@ int on_samples(short* wav, int count, espeak_EVENT* events) {
   return write_all(fd, reinterpret_cast<const char*>(wav), 2 * static_cast<std::size_t>(count)) ? 0 : 1;
 }
 
-// The forked child: speaks the request into `fd` from the state espeak-ng had right after initialisation.
+// The forked child: speaks the request into `fd` from the state espeak-ng had right after initialisation (voice set).
 [[noreturn]] void speak_and_exit(const Request& r, int fd) {
-  if (espeak_SetVoiceByName(kVoice) != EE_OK) ::_exit(2);
   espeak_SetParameter(espeakRATE, rate_parameter(r.syllables_per_s), 0);
   espeak_SetParameter(espeakPITCH, pitch_parameter(r.pitch_hz), 0);
   espeak_SetParameter(espeakRANGE, 40 + static_cast<int>((r.seed >> 16) % 31), 0);  // intonation, 50 = normal
@@ -85,6 +84,10 @@ Speech speak(const Request& request) {
     const int rate = espeak_Initialize(AUDIO_OUTPUT_SYNCHRONOUS, 0, nullptr, espeakINITIALIZE_DONT_EXIT);
     if (rate <= 0) throw std::runtime_error("espeak-ng could not start (is espeak-ng-data installed?)");
     espeak_SetSynthCallback(on_samples);
+    // The voice (its dictionary and phoneme tables) is loaded once here; the children inherit it.
+    if (espeak_SetVoiceByName(kVoice) != EE_OK) {
+      throw std::runtime_error(std::string("espeak-ng has no voice '") + kVoice + "' (is espeak-ng-data installed?)");
+    }
     espeak_rate_hz = rate;
   }
   // espeak-ng carries state from one synthesis to the next (its output differs when the same words are said twice),
