@@ -25,7 +25,8 @@ inline int expect_utterances_heard(const std::vector<float>& samples, const std:
   }
   EXPECT_FALSE(spoken.empty());
   int checked = 0;
-  for (const auto& [start, end] : spoken) {
+  for (const auto& utterance : spoken) {
+    const double start = utterance.first;
     const bool after_silence = std::none_of(spoken.begin(), spoken.end(), [&](const auto& o) {
       return o.first < start && o.second > start - 0.4;
     });
@@ -49,7 +50,7 @@ inline std::size_t delay_of(const std::vector<float>& delayed, const std::vector
   for (std::size_t lag = 0; lag <= max_lag && lag < delayed.size(); ++lag) {
     double c = 0.0, a = 0.0, b = 0.0;
     for (std::size_t i = 0; i < original.size() && i + lag < delayed.size(); ++i) {
-      const double x = original[i], y = delayed[i + lag];
+      const auto x = static_cast<double>(original[i]), y = static_cast<double>(delayed[i + lag]);
       c += x * y;
       a += x * x;
       b += y * y;

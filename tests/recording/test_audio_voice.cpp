@@ -66,7 +66,7 @@ double median_f0_hz(const std::vector<float>& s) {
     for (int lag = kAudioRate / 500; lag <= kAudioRate / 70; ++lag) {
       double c = 0.0, a = 0.0, b = 0.0;
       for (std::size_t j = 0; j + static_cast<std::size_t>(lag) < kFrame; ++j) {
-        const double x = s[i + j], y = s[i + j + static_cast<std::size_t>(lag)];
+        const auto x = static_cast<double>(s[i + j]), y = static_cast<double>(s[i + j + static_cast<std::size_t>(lag)]);
         c += x * y;
         a += x * x;
         b += y * y;
