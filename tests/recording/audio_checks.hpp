@@ -42,20 +42,26 @@ inline int expect_utterances_heard(const std::vector<float>& samples, const std:
   return checked;
 }
 
-/// The lag (samples, ≤ `max_lag`) at which `delayed` best matches `original` (normalised cross-correlation), expecting
-/// the match to be close (correlation above 0.9).
+/// The normalised correlation of `n` samples of `a` from `ia` with `n` samples of `b` from `ib` (0 for silence).
+inline double correlation(const std::vector<float>& a, std::size_t ia, const std::vector<float>& b, std::size_t ib,
+                          std::size_t n) {
+  double c = 0.0, ea = 0.0, eb = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto x = static_cast<double>(a[ia + i]), y = static_cast<double>(b[ib + i]);
+    c += x * y;
+    ea += x * x;
+    eb += y * y;
+  }
+  return ea > 0.0 && eb > 0.0 ? c / std::sqrt(ea * eb) : 0.0;
+}
+
+/// The lag (samples, ≤ `max_lag`) at which `delayed` best matches `original`, expecting the match to be close
+/// (correlation above 0.9).
 inline std::size_t delay_of(const std::vector<float>& delayed, const std::vector<float>& original, std::size_t max_lag) {
   std::size_t best_lag = 0;
   double best = -1.0;
   for (std::size_t lag = 0; lag <= max_lag && lag < delayed.size(); ++lag) {
-    double c = 0.0, a = 0.0, b = 0.0;
-    for (std::size_t i = 0; i < original.size() && i + lag < delayed.size(); ++i) {
-      const auto x = static_cast<double>(original[i]), y = static_cast<double>(delayed[i + lag]);
-      c += x * y;
-      a += x * x;
-      b += y * y;
-    }
-    const double r = c / (std::sqrt(a * b) + 1e-12);
+    const double r = correlation(original, 0, delayed, lag, std::min(original.size(), delayed.size() - lag));
     if (r > best) best = r, best_lag = lag;
   }
   EXPECT_GT(best, 0.9) << "the decoded sound does not match the original at any lag up to " << max_lag;

@@ -61,18 +61,15 @@ double median_f0_hz(const std::vector<float>& s) {
   constexpr std::size_t kFrame = kAudioRate / 25;
   std::vector<double> found;
   for (std::size_t i = 0; i + kFrame < s.size(); i += kFrame / 2) {
+    const std::size_t n = kFrame - kAudioRate / 70;  // every lag's window inside the frame
+    double energy = 0.0;
+    for (std::size_t j = i; j < i + kFrame; ++j) energy += static_cast<double>(s[j]) * static_cast<double>(s[j]);
+    if (energy / kFrame < 1e-5) continue;  // silence
     double best = 0.0;
     int best_lag = 0;
     for (int lag = kAudioRate / 500; lag <= kAudioRate / 70; ++lag) {
-      double c = 0.0, a = 0.0, b = 0.0;
-      for (std::size_t j = 0; j + static_cast<std::size_t>(lag) < kFrame; ++j) {
-        const auto x = static_cast<double>(s[i + j]), y = static_cast<double>(s[i + j + static_cast<std::size_t>(lag)]);
-        c += x * y;
-        a += x * x;
-        b += y * y;
-      }
-      if (a < 1e-3) break;  // silence
-      if (c / std::sqrt(a * b) > best) best = c / std::sqrt(a * b), best_lag = lag;
+      const double r = audio_checks::correlation(s, i, s, i + static_cast<std::size_t>(lag), n);
+      if (r > best) best = r, best_lag = lag;
     }
     if (best > 0.6) found.push_back(static_cast<double>(kAudioRate) / best_lag);
   }
