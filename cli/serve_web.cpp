@@ -19,6 +19,7 @@
 #include <mutex>
 
 #include "freeplay/ros/graph.hpp"
+#include "freeplay/ros/serve.hpp"
 #include "freeplay/ros/sparc_listener.hpp"
 #endif
 
@@ -34,7 +35,11 @@ void add_web_options(CLI::App& serve, WebCliOptions& o) {
   serve.add_option("--sparc-timeout", o.sparc_timeout_s, "Supervised mode: a proposal executes after this many "
                                                          "simulated seconds unless vetoed")
       ->check(CLI::Range(0.1, 60.0));
+  serve.add_flag("--web-record", o.record, "Record the session's bag from the start (<web-out>/recording/freeplay.bag; "
+                                         "else paused until the page starts it)");
   serve.add_flag("--web-no-linger", o.no_linger, "Exit when the episode ends instead of waiting for 'finalise'");
+  serve.add_flag("--web-graph", o.graph, "Also serve the game on the ROS master as plain serve does (its topics, "
+                                         "services and sandtray/signals/*; ROS_MASTER_URI; --master-timeout)");
   serve.add_flag("--web-ros", o.ros, "Also take the real WoZ GUI's sparc/selected_action from the ROS master "
                                      "(ROS_MASTER_URI; --master-timeout)");
 }
@@ -67,6 +72,7 @@ void run_web_serve(const std::string& file, const std::vector<std::string>& over
                  : o.mode == "supervised" ? web::RobotMode::Supervised : web::RobotMode::Autonomous;
   options.sparc_timeout_s = o.sparc_timeout_s;
   options.linger = !o.no_linger;
+  options.record = o.record;
   options.out = o.out.empty() ? std::filesystem::path("runs") / fmt::format("web-{:%Y%m%dT%H%M%S}", fmt::gmtime(std::time(nullptr)))
                               : std::filesystem::path(o.out);
   const auto episode_seed = runner::episode_seed(seed.value_or(scenario.seed), 0);
@@ -80,8 +86,26 @@ void run_web_serve(const std::string& file, const std::vector<std::string>& over
   std::mutex sink_mutex;
   web::CommandSink sink;
   std::unique_ptr<ros_live::SparcListener> sparc;
+  std::unique_ptr<ros_live::GraphSide> graph;
+  if ((o.ros || o.graph) && std::getenv("ROS_IP") == nullptr && std::getenv("ROS_HOSTNAME") == nullptr) {
+    setenv("ROS_IP", "127.0.0.1", 1);
+  }
+  if (o.graph) {  // the game's topics and services on the master, its signals into the episode
+    ros_live::ServeOptions serve;
+    serve.rate = rate;
+    serve.master_timeout_s = o.master_timeout_s;
+    try {
+      graph = std::make_unique<ros_live::GraphSide>(scenario, episode_seed, serve);
+    } catch (const std::runtime_error& e) {
+      if (dynamic_cast<const InputError*>(&e) != nullptr) throw;
+      std::cerr << "error: " << e.what() << "\n";
+      fail_with(1);
+    }
+    options.also_observe = &graph->publisher();
+    options.also_frames = &graph->cameras();
+    options.signals = &graph->signals();
+  }
   if (o.ros) {
-    if (std::getenv("ROS_IP") == nullptr && std::getenv("ROS_HOSTNAME") == nullptr) setenv("ROS_IP", "127.0.0.1", 1);
     std::string error;
     if (!ros_graph::start_ros("sandtray_web", o.master_timeout_s, error)) {
       std::cerr << "error: " << error << "\n";
@@ -101,8 +125,9 @@ void run_web_serve(const std::string& file, const std::vector<std::string>& over
     });
   }
 #else
-  if (o.ros) {
-    throw InputError("this freeplay was built without ROS 1", "--web-ros", "install it with scripts/setup.sh and rebuild");
+  if (o.ros || o.graph) {
+    throw InputError("this freeplay was built without ROS 1", o.ros ? "--web-ros" : "--web-graph",
+                     "install it with scripts/setup.sh and rebuild");
   }
 #endif
   const auto report = web::serve_web(scenario, episode_seed, options, stop);

@@ -19,7 +19,9 @@ struct WebCliOptions {
   std::string mode = "autonomous"; ///< robot mode at the start
   double sparc_timeout_s = 2.0;    ///< SPARC proposal timeout
   bool no_linger = false;          ///< exit when the episode ends instead of waiting for `finalise`
+  bool record = false;             ///< the session's bag records from the start
   bool ros = false;                ///< also take `sparc/selected_action` from a ROS master
+  bool graph = false;              ///< also serve the game's topics, services and signals on a ROS master
   double master_timeout_s = 10.0;  ///< how long to wait for it
 };
 

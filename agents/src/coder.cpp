@@ -143,9 +143,15 @@ void PairCoder::track_task_and_attitude(double t, double dt, int who, const Obse
 
 TaskEngagement PairCoder::task_candidate(double t, int who) const {
   const Track& me = tracks_[static_cast<std::size_t>(who)];
+  const Track& them = tracks_[static_cast<std::size_t>(1 - who)];
   if (t - me.last_adult_t <= params_.adult_hold_s) return TaskEngagement::AdultSeeking;
   if (std::max(me.constructive, me.aimless) < params_.play_share) return TaskEngagement::NoPlay;
+  // Two children in an exchange are one activity to the coder: the kind of their play is judged together.
   // Discussing what to do next is part of the task; chatting without playing is being off task.
+  if (!second_is_robot_ && t - last_exchange_t_ <= params_.exchange_hold_s) {
+    return me.constructive + them.constructive >= me.aimless + them.aimless ? TaskEngagement::GoalOriented
+                                                                            : TaskEngagement::Aimless;
+  }
   return me.constructive >= me.aimless ? TaskEngagement::GoalOriented : TaskEngagement::Aimless;
 }
 

@@ -105,6 +105,9 @@ class LivePublisher final : public runner::EpisodeObserver {
   /// Runs the marker display and the NAO's localisation node on `robot_localising` (child-robot episodes).
   void set_localisation(ServedLocalisation* localisation) { localisation_ = localisation; }
 
+  /// Notes a signal the graph sent: the stage it starts is not signalled again (the game never echoes a signal).
+  void received(const std::string& name) { received_.insert(name); }
+
   /// Sandtray time of the last tick published.
   double last_t() const { return last_t_; }
 
@@ -142,7 +145,6 @@ class LivePublisher final : public runner::EpisodeObserver {
     auto& g = *live_.graph;
     if (e.type == "interaction_event") g.interaction_event(e.data.value("message", ""));
     if (e.type == "say" && e.source == "robot") g.speech(e.data.value("text", ""));
-    if (e.source == "protocol" && e.type == "signal_received") received_.insert(e.data.value("name", ""));
     if (e.source == "protocol" && e.type == "stage") {
       static const std::map<std::string, std::string> kSignals = {
           {"tutorial", "start_tutorial"}, {"freeplay", "start_freeplay"}, {"debriefing", "blank_interface"}};
@@ -201,7 +203,7 @@ class LiveCameras final : public runner::FrameSink {
 /// NAO's localisation node.
 class GraphSignals final : public runner::SignalSource {
  public:
-  GraphSignals(ros_graph::SandtrayGraph& graph, const LivePublisher& publisher, ServedLocalisation* localisation)
+  GraphSignals(ros_graph::SandtrayGraph& graph, LivePublisher& publisher, ServedLocalisation* localisation)
       : graph_(graph), publisher_(publisher), localisation_(localisation) {}
 
   std::vector<sim::Signal> take() override {
@@ -211,6 +213,7 @@ class GraphSignals final : public runner::SignalSource {
         spdlog::info("received sandtray/signals/{}: the marker field and the NAO's localisation", name);
       } else if (const auto signal = sim::signal_from_name(name)) {
         spdlog::info("received sandtray/signals/{}: applied", name);
+        publisher_.received(name);
         out.push_back(*signal);
       } else {
         spdlog::info("received sandtray/signals/{}: not simulated by the game", name);
@@ -221,7 +224,7 @@ class GraphSignals final : public runner::SignalSource {
 
  private:
   ros_graph::SandtrayGraph& graph_;
-  const LivePublisher& publisher_;
+  LivePublisher& publisher_;
   ServedLocalisation* localisation_;
 };
 
@@ -340,51 +343,84 @@ void serve_plans(GraphRobot& robot, const sim::Sandtray& tray) { robot.serve_pla
 /// Hands every tick to the publisher (the episode owns its observers; the publisher outlives the episode).
 class PublisherRef final : public runner::EpisodeObserver {
  public:
-  explicit PublisherRef(LivePublisher& publisher) : publisher_(publisher) {}
+  explicit PublisherRef(runner::EpisodeObserver& publisher) : publisher_(publisher) {}
   void observe(const runner::EpisodeSnapshot& snapshot) override { publisher_.observe(snapshot); }
 
  private:
-  LivePublisher& publisher_;
+  runner::EpisodeObserver& publisher_;
 };
 
 }  // namespace
 
+struct GraphSide::Impl {
+  Impl(const runner::Scenario& scenario, std::uint64_t seed, const ServeOptions& options)
+      : graph(make_graph(scenario, options)),
+        live{graph.get(), ros_graph::wall_now()},
+        publisher(live, options.rate, !options.external_robot),
+        cameras(live, scenario.recording.jpeg_quality),
+        publisher_ref(publisher) {
+    const bool child_robot = scenario.condition == "child-robot";
+    if (child_robot) {
+      const auto body = runner::SharedModels::shipped().robot_body(scenario.robot.mode, scenario.robot.arm_reach_m);
+      publisher.set_reach(body->reach());
+      localisation::LocaliserSettings settings;
+      settings.arm_reach_m = scenario.robot.arm_reach_m;
+      localisation = std::make_unique<ServedLocalisation>(settings, runner::renderer_options(scenario.rendering));
+      publisher.set_localisation(localisation.get());
+    }
+    if (options.external_robot && child_robot) {
+      robot = std::make_unique<GraphRobot>(live, scenario, publisher, SeedSequence(seed).seed_for("serve.planner"));
+      publisher.set_planner(robot.get());
+    }
+    signals = std::make_unique<GraphSignals>(*graph, publisher, localisation.get());
+  }
+
+  static std::unique_ptr<ros_graph::SandtrayGraph> make_graph(const runner::Scenario& scenario, const ServeOptions& options) {
+    std::string error;
+    if (!ros_graph::start_ros(options.node_name, options.master_timeout_s, error)) throw std::runtime_error(error);
+    const bool child_robot = scenario.condition == "child-robot";
+    return std::make_unique<ros_graph::SandtrayGraph>(
+        ros_graph::NodeOptions{options.node_name, options.rate != 1.0, options.external_robot && child_robot});
+  }
+
+  std::unique_ptr<ros_graph::SandtrayGraph> graph;
+  Live live;
+  LivePublisher publisher;
+  LiveCameras cameras;
+  PublisherRef publisher_ref;
+  std::unique_ptr<ServedLocalisation> localisation;
+  std::unique_ptr<GraphRobot> robot;
+  std::unique_ptr<GraphSignals> signals;
+};
+
+GraphSide::GraphSide(const runner::Scenario& scenario, std::uint64_t seed, const ServeOptions& options)
+    : impl_(std::make_unique<Impl>(scenario, seed, options)) {}
+
+GraphSide::~GraphSide() = default;
+
+runner::EpisodeObserver& GraphSide::publisher() { return impl_->publisher_ref; }
+
+runner::FrameSink& GraphSide::cameras() { return impl_->cameras; }
+
+runner::SignalSource& GraphSide::signals() { return *impl_->signals; }
+
+runner::RobotActionSource* GraphSide::robot() { return impl_->robot.get(); }
+
+ServeTiming GraphSide::timing() const { return impl_->publisher.timing(); }
+
 runner::EpisodeResult serve(const runner::Scenario& scenario, std::uint64_t seed, const ServeOptions& options,
                             const std::atomic<bool>& stop, ServeTiming* timing) {
-  std::string error;
-  if (!ros_graph::start_ros(options.node_name, options.master_timeout_s, error)) throw std::runtime_error(error);
-  const bool child_robot = scenario.condition == "child-robot";
-  ros_graph::SandtrayGraph graph({options.node_name, options.rate != 1.0, options.external_robot && child_robot});
-  Live live{&graph, ros_graph::wall_now()};
-  LivePublisher publisher(live, options.rate, !options.external_robot);
-  if (child_robot) {
-    const auto body = runner::SharedModels::shipped().robot_body(scenario.robot.mode, scenario.robot.arm_reach_m);
-    publisher.set_reach(body->reach());
-  }
-  std::unique_ptr<ServedLocalisation> localisation;
-  if (child_robot) {
-    localisation::LocaliserSettings settings;
-    settings.arm_reach_m = scenario.robot.arm_reach_m;
-    localisation = std::make_unique<ServedLocalisation>(settings, runner::renderer_options(scenario.rendering));
-    publisher.set_localisation(localisation.get());
-  }
-  std::unique_ptr<GraphRobot> robot;
-  if (options.external_robot && child_robot) {
-    robot = std::make_unique<GraphRobot>(live, scenario, publisher, SeedSequence(seed).seed_for("serve.planner"));
-    publisher.set_planner(robot.get());
-  }
+  GraphSide side(scenario, seed, options);
   runner::EpisodeObservers observers;
-  observers.push_back(std::make_unique<PublisherRef>(publisher));
-  LiveCameras cameras(live, scenario.recording.jpeg_quality);
+  observers.push_back(std::make_unique<PublisherRef>(side.publisher()));
   if (!scenario.cameras.empty()) {  // rendered after the tick's topics went out, at each camera's own rate
     observers.push_back(std::make_unique<runner::CameraRig>(
-        scenario, runner::renderer_options(scenario.rendering), std::vector<runner::FrameSink*>{&cameras}));
+        scenario, runner::renderer_options(scenario.rendering), std::vector<runner::FrameSink*>{&side.cameras()}));
   }
   const runner::EpisodeInfo info{&scenario, "serve", seed};
-  GraphSignals signals(graph, publisher, localisation.get());
   auto result = runner::run_episode(scenario, seed, runner::SharedModels::shipped(), stop, observers, info, nullptr,
-                                    robot.get(), &signals);
-  if (timing != nullptr) *timing = publisher.timing();
+                                    side.robot(), &side.signals());
+  if (timing != nullptr) *timing = side.timing();
   return result;
 }
 

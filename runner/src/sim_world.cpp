@@ -156,6 +156,13 @@ void SimWorld::snapshot(EpisodeSnapshot& out, std::string_view stage) {
       if (c.owns_finger(touch.finger)) s.touches.emplace_back(touch.finger, touch.position);
     }
     s.speaking = stage == "freeplay" && c.speaking(freeplay_t);
+    s.coded = {};
+    if (started && coder_) {
+      for (std::size_t a = 0; a < agents::kAxisCount; ++a) {
+        const auto axis = agents::kAxes[a];
+        s.coded[a] = agents::label_name(axis, coder_->current(static_cast<int>(i), axis));
+      }
+    }
   }
   out.t = t_abs;
   out.freeplay_t = freeplay_t;

@@ -137,7 +137,8 @@ void SimWorld::cancel(double /*t*/) {
   log_.emit({now(), "robot", "cancel", nullptr});
 }
 
-// `/poses` from outside reach the game and the Nao follows them (nao_behaviours); gaze and pointing move the Nao.
+// `/poses` from outside reach the game and the Nao follows them (nao_behaviours); gaze and pointing move the Nao;
+// speech goes the way of a policy's `say`.
 void SimWorld::apply_external(const RobotCommands& commands, double t) {
   for (const auto& p : commands.finger) {
     robot_finger(p, t);
@@ -145,6 +146,7 @@ void SimWorld::apply_external(const RobotCommands& commands, double t) {
   }
   if (commands.look_at) look_at_point(*commands.look_at);
   if (commands.point_at) point_at(*commands.point_at, t);
+  for (const auto& u : commands.say) say(u.text, u.to, speech_duration_s(u.text), t);
 }
 
 void SimWorld::rest_when_idle(double t) {

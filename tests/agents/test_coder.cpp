@@ -173,6 +173,29 @@ TEST(Coder, ScribblesInOtherColoursAreAimlessAndNothingIsNoPlay) {
   EXPECT_GT(share(shares[1], TaskEngagement::NoPlay), 0.9);
 }
 
+TEST(Coder, InAnExchangeThePairsKindOfPlayIsJudgedTogether) {
+  // One child moves items, the other scribbles in red: apart, one is goal-oriented and the other aimless; talking
+  // back and forth, the coder sees one activity and gives both the same kind of play (docs/agents.md, §8).
+  const auto agreement = [](bool talk) {
+    PairCoder coder(params().coder, false);
+    const double seconds = 120.0;
+    for (long tick = 0; tick * 0.1 < seconds; ++tick) {
+      const double t = static_cast<double>(tick) * 0.1;
+      ObservedPlayer builder = plays(t, 0.10, 0, 2.0);
+      ObservedPlayer scribbler = draws(t, PaletteColour::Red, 4.0);
+      if (talk) {
+        builder = speaks(builder, t, Utterance::Comment, 6.0, 0.5);
+        scribbler = speaks(scribbler, t, Utterance::Comment, 6.0, 2.0);
+      }
+      coder.observe(t, builder, scribbler);
+    }
+    coder.finish(seconds);
+    return timeline_agreement(coder.timeline(0), coder.timeline(1), Axis::TaskEngagement, seconds);
+  };
+  EXPECT_LT(agreement(false), 0.2);
+  EXPECT_GT(agreement(true), 0.8);
+}
+
 TEST(Coder, LookingAtTheExperimenterIsAdultSeeking) {
   const auto shares = code(
       [](double t) {

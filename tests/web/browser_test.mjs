@@ -32,7 +32,7 @@ async function until(what, f, timeoutMs = 30000) {
 function foxglove(url) {
   return new Promise((resolve, reject) => {
     const ws = new WebSocket(url, ['foxglove.websocket.v1']);
-    const result = { protocol: '', serverInfo: false, topics: [], tfSchema: '', tf: [], jpeg: false };
+    const result = { protocol: '', serverInfo: false, topics: [], tfSchema: '', tf: [], links: new Set(), joints: 0, jpeg: false, camera: false };
     const channels = {};
     const timer = setTimeout(() => { ws.close(); reject(new Error('no Foxglove messages')); }, 15000);
     ws.on('open', () => { result.protocol = ws.protocol; });
@@ -52,19 +52,32 @@ function foxglove(url) {
       const topic = channels[b.readUInt32LE(1) - 100].topic;
       let o = 13;
       const str = () => { const n = b.readUInt32LE(o); o += 4; const v = b.toString('utf8', o, o + n); o += n; return v; };
-      if (topic === '/tf' && result.tf.length === 0) {
+      if (topic === '/tf') {  // the game's frames (sandtray → items) or the Nao's links (robot_state_publisher)
         const count = b.readUInt32LE(o); o += 4;
+        const frames = [];
         for (let i = 0; i < count; ++i) {
           o += 12; const parent = str(); const child = str();
           const x = b.readDoubleLE(o), y = b.readDoubleLE(o + 8); o += 7 * 8;
-          result.tf.push({ parent, child, x, y });
+          frames.push({ parent, child, x, y });
         }
+        if (frames.length && frames[0].parent === 'sandtray' && frames[0].child !== 'base_link') {
+          if (result.tf.length === 0) result.tf = frames;
+        } else {
+          for (const f of frames) result.links.add(f.child);
+        }
+      }
+      if (topic === '/env_camera/qhd/image_color/compressed') {  // the scenario's stage camera, at its rate
+        o += 12; const frame = str(); const format = str(); const n = b.readUInt32LE(o);
+        result.camera = frame === 'env_camera_rgb_optical_frame' && format === 'jpeg' && b[o + 4] === 0xff && b[o + 5] === 0xd8 && n > 1000;
+      }
+      if (topic === '/joint_states') {
+        o += 12; str(); result.joints = b.readUInt32LE(o);
       }
       if (topic === '/sandtray/background/image/compressed') {
         o += 12; str(); const format = str(); const n = b.readUInt32LE(o);
         result.jpeg = format === 'jpeg' && b[o + 4] === 0xff && b[o + 5] === 0xd8 && n > 1000;
       }
-      if (result.tf.length && result.jpeg) { clearTimeout(timer); ws.close(); resolve(result); }
+      if (result.tf.length && result.jpeg && result.links.size && result.joints && result.camera) { clearTimeout(timer); ws.close(); resolve(result); }
     });
     ws.on('error', reject);
   });
@@ -76,7 +89,8 @@ fs.rmSync(session, { recursive: true, force: true });
 const server = spawn(freeplay, ['serve', scenario, '--web', '0', '--web-token', token, '--web-out', session,
                                 '--web-mode', 'wizard', '--seed', '7', '--set', 'protocol.greeting_s=6',
                                 '--set', 'protocol.tutorial_s=1', '--set', 'protocol.freeplay_cap_s=120',
-                                '--set', 'protocol.debriefing_s=1', '--web-no-linger'],
+                                '--set', 'protocol.debriefing_s=1', '--web-no-linger',
+                                '--set', 'cameras=[{name: env_camera, rate_hz: 1, width: 320, height: 180}]'],
                      { stdio: ['ignore', 'pipe', 'inherit'] });
 const firstLine = await new Promise((resolve, reject) => {
   readline.createInterface({ input: server.stdout }).once('line', resolve);
@@ -100,6 +114,9 @@ try {
   check(r.status === 400 && (await r.json()).error.includes('zebra'), 'an unknown item gets 400 naming the items');
   r = await post({ type: 'move', item: 'zebra', x: 0.3, y: -0.1 });
   check(r.status === 409, 'a move outside free play gets 409', `${r.status}`);
+  // The scenario camera renders (llvmpipe, on every core) only from the Foxglove check on: the latency figures are
+  // taken without it first, then with it.
+  check((await post({ type: 'component', name: 'cameras', action: 'stop' })).status === 202, 'the cameras can be paused before free play');
 
   browser = await puppeteer.launch({ executablePath: process.env.FREEPLAY_CHROMIUM, headless: 'new',
                                      args: ['--no-sandbox', '--disable-gpu', '--disable-dev-shm-usage', '--font-render-hinting=none',
@@ -218,15 +235,15 @@ try {
   const yaml = readText(yamlPath);
   check(/purple-participant:/.test(yaml) && /gender: female/.test(yaml) && /tablet-familiarity: "?2"?/.test(yaml) &&
         /condition: childrobot/.test(yaml), 'the demographics form writes experiment.yaml');
-  await page.click('[data-signal=start_tutorial]');
-  await until('the tutorial signal in the event log', () => readText(path.join(session, 'events.jsonl')).includes('"topic":"sandtray/signals/start_tutorial"'));
-  check(true, 'the Tutorial button sends sandtray/signals/start_tutorial (event log)');
   await page.click('[data-marker=interesting]');
   await page.click('[data-likert="4"]');
   await until('the marker and Likert in experiment.yaml', () => /interesting/.test(readText(yamlPath)) && /social-engagement: 4/.test(readText(yamlPath)));
   check(true, 'marker and Likert buttons write experiment.yaml');
   await page.click('[data-marker=screenshot]');
-  const shot = await until('the screenshot file', () => fs.readdirSync(session).find((f) => /^freeplay-1-.*\.png$/.test(f)));
+  const shot = await until('the screenshot file, written', () => {  // named at once, written by the next tick
+    const f = fs.readdirSync(session).find((n) => /^freeplay-1-.*\.png$/.test(n));
+    return f && fs.statSync(path.join(session, f)).size > 10000 && /screenshot/.test(readText(yamlPath)) ? f : null;
+  });
   check(fs.statSync(path.join(session, shot)).size > 10000 && /screenshot/.test(readText(yamlPath)),
         'the screenshot marker saves the game screen as the sessions did', shot);
 
@@ -248,6 +265,8 @@ try {
   check(wsRefused, 'a WebSocket without the token is refused');
 
   // ---- Foxglove WebSocket protocol: advertise, subscribe, ROS 1 binary messages --------------------------------
+  const withoutCamera = await page.evaluate(() => window.__latencies.length);
+  await post({ type: 'component', name: 'cameras', action: 'start' });
   const fox = await foxglove(`${base.replace('http', 'ws')}/?token=${token}`);
   check(fox.protocol === 'foxglove.websocket.v1' && fox.serverInfo, 'a Foxglove client gets serverInfo on foxglove.websocket.v1');
   check(['/tf', '/zones', '/footprints', '/sandtray/background/image/compressed'].every((t) => fox.topics.includes(t)) &&
@@ -256,12 +275,39 @@ try {
   const near = fox.tf.filter((t) => { const i = serverItems.find((k) => k.name === t.child); return i && Math.hypot(i.x - t.x, i.y - t.y) < 0.05; });
   check(fox.tf.length >= 10 && near.length >= 8, '/tf messages decode to the items in the sandtray frame', `${near.length} of ${fox.tf.length} near`);
   check(fox.jpeg, 'the background arrives as a JPEG sensor_msgs/CompressedImage');
+  check(fox.topics.includes('/joint_states') && fox.joints >= 20 && fox.links.size >= 10 && ['torso', 'Head'].every((l) => fox.links.has(l)),
+        "the Nao's /joint_states and its links on /tf", `${fox.joints} joints, ${fox.links.size} links`);
+  check(fox.camera, "the scenario's env_camera arrives as a JPEG CompressedImage in its optical frame");
+
+  // ---- the coder's ground truth and the components panel ---------------------------------------------------------
+  const coded = await page.evaluate(() => window.__state.children[0].coded);
+  check(coded && coded.task && coded.social && coded.attitude, "the child's coded state reaches the page", JSON.stringify(coded));
+  await page.bringToFront();  // clicks scroll into view, which waits for a frame of a visible tab
+  await page.click('[data-component-action="recorder:start"]');
+  await page.waitForFunction(() => window.__state.components.recorder.state === 'recording', { timeout: 10000 });
+  await page.click('[data-component-action="robot:stop"]');
+  await page.waitForFunction(() => window.__state.components.robot.state === 'paused', { timeout: 10000 });
+  await page.click('[data-component-action="robot:start"]');
+  await page.click('[data-component-action="recorder:stop"]');
+  await page.click('[data-component-action="cameras:stop"]');
+  await page.waitForFunction(() => window.__state.components.cameras.state === 'paused', { timeout: 10000 });
+  await page.click('[data-component-action="cameras:start"]');
+  await page.waitForFunction(() => window.__state.components.recorder.state === 'paused' &&
+                             window.__state.components.robot.state === 'running' && window.__state.components.recorder.messages > 0 &&
+                             window.__state.components.cameras.state === 'running',
+                             { timeout: 10000 });
+  const switches = readText(path.join(session, 'events.jsonl')).split('\n').filter((l) => l.includes('"type":"component"')).length;
+  check(switches === 8, 'the components panel starts and stops the recorder, the robot side and the cameras (logged, with the two API switches)', `${switches} logged`);
 
   // ---- console, latency, screenshot ------------------------------------------------------------------------------
   check(page.errors.length === 0, 'the page logs no console errors', page.errors.join(' | '));
-  const lat = (await page.evaluate(() => window.__latencies)).slice(5).sort((a, b) => a - b);
-  const q = (p) => lat[Math.min(lat.length - 1, Math.floor(p * (lat.length - 1)))];
-  const latency = { frames: lat.length, p50_ms: q(0.5), p99_ms: q(0.99), max_ms: lat[lat.length - 1] };
+  const all = await page.evaluate(() => window.__latencies);
+  const stats = (list) => {
+    const lat = [...list].sort((a, b) => a - b);
+    const q = (p) => lat[Math.min(lat.length - 1, Math.floor(p * (lat.length - 1)))];
+    return { frames: lat.length, p50_ms: q(0.5), p99_ms: q(0.99), max_ms: lat[lat.length - 1] };
+  };
+  const latency = { ...stats(all.slice(5, withoutCamera)), with_1hz_camera: stats(all.slice(withoutCamera)) };
   console.log(`state push latency tick→page: ${JSON.stringify(latency)}`);
   fs.writeFileSync(path.join(out, 'latency.json'), JSON.stringify(latency) + '\n');
   await page.screenshot({ path: path.join(out, 'web.png') });
@@ -274,6 +320,13 @@ try {
   }), 30000);
   check(camera[0] === 480 && camera[1] === 270, 'the 3-D camera view shows env_camera on request', camera.join('×'));
   await page.screenshot({ path: path.join(out, 'web-camera.png'), fullPage: true });
+
+  // ---- the Debriefing button ends free play in the served episode (last: the server then exits) ------------------
+  await page.click('[data-signal=blank_interface][data-debrief]');
+  await page.waitForFunction(() => ['debriefing', 'ended'].includes(window.__state.stage), { timeout: 10000 });
+  const log = readText(path.join(session, 'events.jsonl'));
+  check(log.includes('"topic":"sandtray/signals/blank_interface"') && log.split('\n').some((l) => l.includes('"signal_received"') && l.includes('"blank_interface"')) &&
+        /"ended_by":"signal"/.test(log), 'the Debriefing button sends sandtray/signals/blank_interface and ends free play');
 } catch (e) {
   check(false, 'the browser test ran to the end', String(e && e.stack || e));
 } finally {

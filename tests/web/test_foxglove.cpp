@@ -1,7 +1,11 @@
 #include <gtest/gtest.h>
 #include <ros/serialization.h>
 
+#include <map>
+
 #include "freeplay/core/rng.hpp"
+#include "freeplay/core/yaml_schema.hpp"
+#include "freeplay/recording/robot_links.hpp"
 #include "freeplay/recording/ros_messages.hpp"
 #include "freeplay/runner/episode.hpp"
 #include "freeplay/sim/sandtray.hpp"
@@ -47,4 +51,70 @@ TEST(WebFoxglove, BinaryFramesCarryTheSubscriptionAndStampLittleEndian) {
   ASSERT_EQ(channels.size(), 4u);
   EXPECT_EQ(channels[0].schema_name, "tf2_msgs/TFMessage");
   EXPECT_NE(channels[0].schema.find("MSG: geometry_msgs/TransformStamped"), std::string::npos);
+}
+
+namespace {
+
+template <typename Message>
+Message decode(const FoxgloveMessage& m) {
+  Message out;
+  std::string bytes = *m.payload;
+  ros::serialization::IStream in(reinterpret_cast<std::uint8_t*>(bytes.data()), static_cast<std::uint32_t>(bytes.size()));
+  ros::serialization::deserialize(in, out);
+  return out;
+}
+
+}  // namespace
+
+TEST(WebFoxglove, ASessionWithARobotAndCamerasAdvertisesTheirChannels) {
+  const auto channels = foxglove_channels({"env_camera", "camera_purple"}, true);
+  std::map<std::string, std::pair<int, std::string>> by_topic;
+  for (const auto& c : channels) by_topic[c.topic] = {c.id, c.schema_name};
+  EXPECT_EQ(by_topic["/joint_states"], (std::pair<int, std::string>{kFoxgloveJointStates, "sensor_msgs/JointState"}));
+  EXPECT_EQ(by_topic["/env_camera/qhd/image_color/compressed"],
+            (std::pair<int, std::string>{kFoxgloveFirstCamera, "sensor_msgs/CompressedImage"}));
+  EXPECT_EQ(by_topic["/camera_purple/rgb/image_raw/compressed"].first, kFoxgloveFirstCamera + 1);
+  EXPECT_EQ(foxglove_channels({}, false).size(), 4u);  // child-child without cameras: the game's only
+}
+
+TEST(WebFoxglove, TheNaosJointsAndLinksAndACameraFrameAreRos1Messages) {
+  // The Nao as an episode's first tick shows it.
+  const auto s = runner::scenario_from_document(parse_yaml(
+      "name: t\ncondition: child-robot\nprotocol: {greeting_s: 0.2, tutorial_s: 0.1, freeplay_cap_s: 1, debriefing_s: 0.1}\n",
+      "test.yaml"));
+  struct First final : runner::EpisodeObserver {
+    runner::RobotSnapshot robot;
+    void observe(const runner::EpisodeSnapshot& snapshot) override {
+      if (robot.joint_names.empty() && snapshot.robot != nullptr) robot = *snapshot.robot;
+    }
+  };
+  auto first = std::make_unique<First>();
+  auto* keep = first.get();
+  runner::EpisodeObservers observers;
+  observers.push_back(std::move(first));
+  const std::atomic<bool> stop{false};
+  runner::run_episode(s, 1, runner::SharedModels::shipped(), stop, observers, {&s, "nao", 1});
+  const auto& robot = keep->robot;
+  ASSERT_GT(robot.joint_names.size(), 20u);
+
+  const auto joints = decode<recording::msg::JointState>(foxglove_joint_states(robot, 42));
+  ASSERT_EQ(joints.name.size(), robot.joint_names.size());
+  EXPECT_EQ(recording::std_string(joints.name[0]), robot.joint_names[0]);
+  EXPECT_DOUBLE_EQ(joints.position[3], robot.positions[3]);
+
+  recording::NaoLinkFrames frames(s.robot.arm_reach_m);
+  const auto& links = frames.compute(robot.joint_names, robot.positions);
+  const auto m = foxglove_robot_tf(links, 42);
+  EXPECT_EQ(m.channel, kFoxgloveTf);
+  const auto tf = decode<recording::msg::TFMessage>(m);
+  ASSERT_EQ(tf.transforms.size(), links.size());
+  EXPECT_EQ(recording::std_string(tf.transforms[0].header.frame_id), "sandtray");
+  EXPECT_EQ(recording::std_string(tf.transforms[0].child_frame_id), "base_link");
+  EXPECT_DOUBLE_EQ(tf.transforms[0].transform.translation.x, links[0].parent_T_child.translation().x());
+
+  const auto image = decode<recording::msg::CompressedImage>(
+      foxglove_camera(kFoxgloveFirstCamera, "env_camera_rgb_optical_frame", {0xff, 0xd8, 0xff}, 42));
+  EXPECT_EQ(recording::std_string(image.format), "jpeg");
+  EXPECT_EQ(recording::std_string(image.header.frame_id), "env_camera_rgb_optical_frame");
+  EXPECT_EQ(image.data.size(), 3u);
 }

@@ -1,41 +1,16 @@
-#include <arpa/inet.h>
-#include <fmt/format.h>
 #include <gtest/gtest.h>
-#include <netinet/in.h>
-#include <sys/socket.h>
-#include <unistd.h>
 #include <yaml-cpp/yaml.h>
 
 #include <fstream>
 
 #include "freeplay/core/yaml_schema.hpp"
 #include "freeplay/web/web_session.hpp"
+#include "http_client.hpp"
 
 using namespace freeplay;
 using namespace freeplay::web;
 
-namespace {
-
-// POSTs `body` to /api/command on 127.0.0.1:`port`: the status code and the body.
-std::pair<int, std::string> post(int port, const std::string& body) {
-  const int fd = socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_port = htons(static_cast<std::uint16_t>(port));
-  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  if (connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) return {-1, ""};
-  const auto request = fmt::format("POST /api/command HTTP/1.1\r\nHost: x\r\nConnection: close\r\nContent-Length: {}\r\n\r\n{}",
-                                   body.size(), body);
-  (void)!write(fd, request.data(), request.size());
-  std::string response;
-  char buffer[4096];
-  for (ssize_t n; (n = read(fd, buffer, sizeof buffer)) > 0;) response.append(buffer, static_cast<std::size_t>(n));
-  close(fd);
-  const auto at = response.find("\r\n\r\n");
-  return {std::stoi(response.substr(9, 3)), at == std::string::npos ? "" : response.substr(at + 4)};
-}
-
-}  // namespace
+using freeplay::web::test_http::post;
 
 TEST(WebSession, AChildChildSessionTakesExperimentCommandsAndRefusesRobotOnes) {
   const auto scenario = runner::scenario_from_document(parse_yaml(

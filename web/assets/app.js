@@ -149,6 +149,7 @@
       $('robot-status').textContent = (rc.move ? `moving ${rc.move.item} (${rc.move.by})` : 'idle') +
         (rc.last_said ? ` · said “${rc.last_said}”` : '');
     }
+    if (state.components) components(state.components);
     if (state.experiment) {
       const e = state.experiment;
       $('experiment-status').textContent = `${e.file} · ${e.markers.length} markers` +
@@ -156,7 +157,8 @@
     }
     for (const c of state.children || []) {
       const t = timelines[c.seat] || (timelines[c.seat] = makeTimeline(c.seat));
-      t.info.textContent = `gaze ${c.gaze}${c.speaking ? ' · speaking' : ''} · fingers ${c.fingers.length}`;
+      t.info.textContent = `gaze ${c.gaze}${c.speaking ? ' · speaking' : ''} · fingers ${c.fingers.length}` +
+        (c.coded ? ` · coded ${c.coded.task} / ${c.coded.social} / ${c.coded.attitude}` : '');
       t.samples.push({ gaze: c.gaze, speaking: c.speaking, touching: c.fingers.length > 0, coded: c.coded });
       if (t.samples.length > 600) t.samples.shift();
       drawTimeline(t);
@@ -164,10 +166,17 @@
   }
 
   const gazeColour = { tray: '#5a9', item: '#7c5', partner: '#e85', robot: '#3fa9f5', away: '#666', experimenter: '#a5a' };
+  // The coder's ground truth (simulation only), one row per PInSoRo axis.
+  const codedColour = {
+    task: { goaloriented: '#4caf50', aimless: '#c0ca33', adultseeking: '#ff9800', noplay: '#757575' },
+    social: { solitary: '#607d8b', onlooker: '#90a4ae', parallel: '#29b6f6', associative: '#7e57c2', cooperative: '#ec407a' },
+    attitude: { prosocial: '#66bb6a', adversarial: '#e53935', assertive: '#ffb300', frustrated: '#8d6e63', passive: '#9e9e9e' },
+  };
   function makeTimeline(seat) {
     const div = document.createElement('div');
     div.className = 'child';
-    div.innerHTML = `<b class="seat-${seat}">${seat}</b> <span class="small"></span><canvas width="600" height="36"></canvas>`;
+    div.innerHTML = `<b class="seat-${seat}">${seat}</b> <span class="small"></span><canvas width="600" height="72"></canvas>` +
+      '<div class="small">rows: gaze · speech · touch · coded task · social · attitude</div>';
     $('children').append(div);
     return { info: div.querySelector('span'), canvas: div.querySelector('canvas'), samples: [] };
   }
@@ -179,7 +188,45 @@
       c.fillStyle = gazeColour[s.gaze] || '#444'; c.fillRect(x, 0, 1, 12);
       if (s.speaking) { c.fillStyle = '#eee'; c.fillRect(x, 12, 1, 12); }
       if (s.touching) { c.fillStyle = '#c94'; c.fillRect(x, 24, 1, 12); }
+      if (s.coded) {
+        ['task', 'social', 'attitude'].forEach((axis, k) => {
+          c.fillStyle = codedColour[axis][s.coded[axis]] || '#444'; c.fillRect(x, 36 + 12 * k, 1, 12);
+        });
+      }
     });
+  }
+
+  // The experiment manager's status panel: every component, with start/stop where it has one.
+  function components(c) {
+    const rows = [['game', c.game, null], ['robot side', c.robot, 'robot'], ['recorder', c.recorder, 'recorder'],
+                  ['cameras', c.cameras, 'cameras']];
+    for (const [label, status, name] of rows) {
+      let row = document.querySelector(`#components [data-component="${label}"]`);
+      if (!row) {
+        row = document.createElement('div');
+        row.className = 'row'; row.dataset.component = label;
+        row.innerHTML = `<span class="label">${label}</span> <span class="chip"></span> <span class="small"></span>`;
+        if (name) {
+          for (const action of ['start', 'stop']) {
+            const b = document.createElement('button');
+            b.textContent = action; b.dataset.componentAction = `${name}:${action}`;
+            b.onclick = () => send({ type: 'component', name, action });
+            row.append(b);
+          }
+        }
+        $('components').append(row);
+      }
+      row.hidden = !status;
+      if (!status) continue;
+      row.querySelector('.chip').textContent = status.state;
+      row.querySelector('.small').textContent =
+        name === 'recorder' ? `${status.messages} messages · paused ${status.paused_s.toFixed(0)} s` :
+        name === 'cameras' ? status.names.join(', ') : name === 'robot' ? status.mode : status.stage;
+      for (const b of row.querySelectorAll('button')) {
+        b.disabled = (name === 'cameras' && status.state === 'none') ||
+          b.textContent === (['running', 'recording'].includes(status.state) ? 'start' : 'stop');
+      }
+    }
   }
 
   function participants() {

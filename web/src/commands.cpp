@@ -106,7 +106,7 @@ nlohmann::json child_record(const nlohmann::json& object, const std::string& sea
 const std::vector<std::string>& types() {
   static const std::vector<std::string> kTypes = {"move", "say", "look_at", "point_at", "stop", "mode", "sparc",
                                                   "sparc_timeout", "signal", "condition", "demographics", "marker",
-                                                  "note", "likert", "finalise", "camera"};
+                                                  "note", "likert", "finalise", "camera", "component"};
   return kTypes;
 }
 
@@ -188,6 +188,9 @@ Command parse_command(const std::string& body, const std::vector<std::string>& i
     auto names = runner::ScenarioVocabulary{}.cameras;
     names.emplace_back("off");
     a["name"] = f.one_of("name", names);
+  } else if (c.type == "component") {
+    a["name"] = f.one_of("name", {"robot", "recorder", "cameras"});
+    a["action"] = f.one_of("action", {"start", "stop"});
   } else if (c.type == "likert") {
     a["social_engagement"] = f.integer("social_engagement", 1, 5);
   }
@@ -195,7 +198,8 @@ Command parse_command(const std::string& body, const std::vector<std::string>& i
   f.no_other_keys();
   static const std::set<std::string> kProtocol = {"signal"};
   static const std::set<std::string> kExperiment = {"condition", "demographics", "marker", "note", "likert", "finalise", "camera"};
-  c.target = c.type == "camera"               ? CommandTarget::View
+  c.target = c.type == "component"            ? CommandTarget::Component
+             : c.type == "camera"             ? CommandTarget::View
              : kProtocol.contains(c.type) ? CommandTarget::Protocol
              : kExperiment.contains(c.type) ? CommandTarget::Experiment
                                             : CommandTarget::Robot;

@@ -1,9 +1,14 @@
 #include "freeplay/web/foxglove.hpp"
 
+#include <fmt/format.h>
+
 #include <Eigen/Geometry>
 #include <ros/serialization.h>
 
+#include "freeplay/recording/camera_topics.hpp"
+#include "freeplay/recording/robot_links.hpp"
 #include "freeplay/recording/ros_messages.hpp"
+#include "freeplay/runner/episode_observer.hpp"
 #include "freeplay/sim/sandtray.hpp"
 #include "freeplay/sim/zones.hpp"
 
@@ -80,6 +85,59 @@ const std::vector<FoxgloveChannel>& foxglove_channels() {
       channel<msg::MarkerArray>(kFoxgloveFootprints, "/footprints"),
       channel<msg::CompressedImage>(kFoxgloveBackground, "/sandtray/background/image/compressed")};
   return kChannels;
+}
+
+std::vector<FoxgloveChannel> foxglove_channels(const std::vector<std::string>& cameras, bool robot) {
+  auto out = foxglove_channels();
+  if (robot) out.push_back(channel<msg::JointState>(kFoxgloveJointStates, "/joint_states"));
+  int id = kFoxgloveFirstCamera;
+  for (const auto& name : cameras) {
+    const auto topic = recording::camera_topics(name).rgb_image;
+    out.push_back(channel<msg::CompressedImage>(id++, topic.starts_with('/') ? topic : fmt::format("/{}", topic)));
+  }
+  return out;
+}
+
+FoxgloveMessage foxglove_robot_tf(const std::vector<recording::LinkTransform>& links, std::uint64_t stamp_ns) {
+  const auto stamp = stamp_of(stamp_ns);
+  msg::TFMessage tf;
+  for (const auto& link : links) {
+    msg::TransformStamped t;
+    t.header.stamp = stamp;
+    t.header.frame_id = recording::ros_string(link.parent);
+    t.child_frame_id = recording::ros_string(link.child);
+    const Eigen::Vector3d p = link.parent_T_child.translation();
+    const Eigen::Quaterniond q(link.parent_T_child.rotation());
+    t.transform.translation.x = p.x();
+    t.transform.translation.y = p.y();
+    t.transform.translation.z = p.z();
+    t.transform.rotation.x = q.x();
+    t.transform.rotation.y = q.y();
+    t.transform.rotation.z = q.z();
+    t.transform.rotation.w = q.w();
+    tf.transforms.push_back(std::move(t));
+  }
+  return message(kFoxgloveTf, stamp_ns, tf);
+}
+
+FoxgloveMessage foxglove_joint_states(const runner::RobotSnapshot& robot, std::uint64_t stamp_ns) {
+  msg::JointState joints;
+  joints.header.stamp = stamp_of(stamp_ns);
+  for (const auto& name : robot.joint_names) joints.name.push_back(recording::ros_string(name));
+  joints.position.assign(robot.positions.begin(), robot.positions.end());
+  joints.velocity.assign(robot.velocities.begin(), robot.velocities.end());
+  joints.effort.assign(robot.efforts.begin(), robot.efforts.end());
+  return message(kFoxgloveJointStates, stamp_ns, joints);
+}
+
+FoxgloveMessage foxglove_camera(int channel_id, const std::string& frame_id, const std::vector<std::uint8_t>& jpeg,
+                                std::uint64_t stamp_ns) {
+  msg::CompressedImage image;
+  image.header.stamp = stamp_of(stamp_ns);
+  image.header.frame_id = recording::ros_string(frame_id);
+  image.format = recording::ros_string("jpeg");
+  image.data.assign(jpeg.begin(), jpeg.end());
+  return message(channel_id, stamp_ns, image);
 }
 
 FoxgloveMessage foxglove_tf(const sim::Sandtray& tray, std::uint64_t stamp_ns) {

@@ -195,7 +195,7 @@ struct WebServer::Impl {
                              {"supportedEncodings", nlohmann::json::array()}, {"metadata", nlohmann::json::object()}}
                   .dump());
     nlohmann::json channels = nlohmann::json::array();
-    for (const auto& c : foxglove_channels()) {
+    for (const auto& c : options.foxglove.empty() ? foxglove_channels() : options.foxglove) {
       channels.push_back({{"id", c.id}, {"topic", c.topic}, {"encoding", "ros1"}, {"schemaName", c.schema_name},
                           {"schema", c.schema}, {"schemaEncoding", "ros1msg"}});
     }

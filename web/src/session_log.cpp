@@ -1,5 +1,7 @@
 #include "freeplay/web/session_log.hpp"
 
+#include <algorithm>
+
 #include "freeplay/core/error.hpp"
 
 namespace freeplay::web {
@@ -21,6 +23,12 @@ std::vector<Event> SessionLog::take_new() {
   std::vector<Event> out(all_.begin() + static_cast<std::ptrdiff_t>(handed_), all_.end());
   handed_ = all_.size();
   return out;
+}
+
+void SessionLog::events_since(std::size_t& cursor, std::vector<Event>& out) const {
+  std::lock_guard lock(mutex_);
+  out.assign(all_.begin() + static_cast<std::ptrdiff_t>(std::min(cursor, all_.size())), all_.end());
+  cursor = all_.size();
 }
 
 std::vector<Event> SessionLog::all() const {

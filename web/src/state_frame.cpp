@@ -68,8 +68,13 @@ nlohmann::json tick_json(const runner::EpisodeSnapshot& s) {
   for (const auto& c : s.children) {
     nlohmann::json fingers = nlohmann::json::array();
     for (const auto& [finger, p] : c.touches) fingers.push_back(finger);
+    nlohmann::json coded = nullptr;  // simulation only: the coder's current labels, once free play started
+    if (!c.coded[0].empty()) {
+      coded = {{"task", std::string(c.coded[0])}, {"social", std::string(c.coded[1])}, {"attitude", std::string(c.coded[2])}};
+    }
     children.push_back({{"seat", c.seat}, {"age", c.age_years}, {"gender", c.gender}, {"gaze", c.gaze},
-                        {"gaze_point", xyz(c.gaze_point)}, {"speaking", c.speaking}, {"fingers", fingers}});
+                        {"gaze_point", xyz(c.gaze_point)}, {"speaking", c.speaking}, {"fingers", fingers},
+                        {"coded", coded}});
   }
   nlohmann::json robot = nullptr;
   if (s.robot != nullptr) {

@@ -10,10 +10,14 @@
 #include <opencv2/imgproc.hpp>
 #include <thread>
 
+#include "freeplay/recording/bag_recorder.hpp"
+#include "freeplay/recording/camera_topics.hpp"
+#include "freeplay/recording/robot_links.hpp"
 #include "freeplay/runner/camera_rig.hpp"
 #include "freeplay/runner/frame_sink.hpp"
 #include "freeplay/sim/sandtray.hpp"
 #include "freeplay/sim/screen_renderer.hpp"
+#include "freeplay/web/components.hpp"
 #include "freeplay/web/experiment.hpp"
 #include "freeplay/web/foxglove.hpp"
 #include "freeplay/web/state_frame.hpp"
@@ -52,7 +56,8 @@ class Session {
         experiment_(options.out / "experiment.yaml", scenario.condition,
                     std::chrono::duration_cast<std::chrono::seconds>(std::chrono::system_clock::now().time_since_epoch()).count(),
                     log_),
-        scene_(scene_json(*runner::SharedModels::shipped().catalogue, scenario).dump()) {
+        scene_(scene_json(*runner::SharedModels::shipped().catalogue, scenario).dump()),
+        signals_(options.signals) {
     for (const auto& item : runner::SharedModels::shipped().catalogue->items()) {
       item_names_.push_back(item.name);
       std::vector<uchar> png;
@@ -62,6 +67,34 @@ class Session {
     if (scenario.condition == "child-robot") {
       robot_ = std::make_unique<WizardRobot>(scenario, seed, log_, options.mode, options.sparc_timeout_s);
     }
+    // The session's bag (`<out>/recording/`), paused until the page starts it unless told to record.
+    recorder_ = std::make_unique<RecorderSwitch>(std::make_unique<recording::BagRecorder>(options.out, scenario.recording),
+                                                 "recording", options.record || scenario.record, log_);
+    for (const auto& c : scenario.cameras) camera_names_.push_back(c.name);
+  }
+
+  /// The signals the page sends, for the episode.
+  WebSignals& signals() { return signals_; }
+  /// The bag recorder's switch.
+  RecorderSwitch& recorder() { return *recorder_; }
+  /// Puts the scenario's camera rig behind the cameras switch (the session keeps it); sinks must outlive it.
+  ObserverSwitch& set_cameras(std::unique_ptr<runner::EpisodeObserver> rig) {
+    cameras_ = std::make_unique<ObserverSwitch>(std::move(rig), "cameras", log_);
+    return *cameras_;
+  }
+
+  /// Every component's state: the game, the robot side, the recorder, the cameras (sim thread).
+  nlohmann::json components(const std::string& stage) const {
+    nlohmann::json out{{"game", {{"state", stage == "ended" ? "ended" : "running"}, {"stage", stage}}},
+                       {"robot", nullptr},
+                       {"recorder", recorder_->status()},
+                       {"cameras", {{"state", !cameras_ ? "none" : cameras_->on() ? "running" : "paused"},
+                                    {"names", camera_names_}}}};
+    if (robot_) {
+      const auto r = robot_->state();
+      out["robot"] = {{"state", r["paused"].get<bool>() ? "paused" : "running"}, {"mode", r["mode"]}};
+    }
+    return out;
   }
 
   WizardRobot* robot() { return robot_.get(); }
@@ -158,11 +191,14 @@ class Session {
         if (c.type == "finalise") finalised_ = true;
         if (c.type == "marker" && c.args["kind"] == "screenshot") ++screenshots_requested_;
         return json_reply(200, {{"ok", true}, {"type", c.type}, {"experiment", experiment_.state()}});
-      case CommandTarget::Protocol: {
-        const auto topic = "sandtray/signals/" + c.args["name"].get<std::string>();
-        log_.add({t, "experimenter", "signal", {{"name", c.args["name"]}, {"topic", topic}}});
+      case CommandTarget::Protocol: {  // to the served episode: a stage signal moves its protocol on
+        const auto name = c.args["name"].get<std::string>();
+        const auto topic = "sandtray/signals/" + name;
+        log_.add({t, "experimenter", "signal", {{"name", name}, {"topic", topic}}});
+        signals_.push(*sim::signal_from_name(name));
         return json_reply(202, {{"ok", true}, {"type", c.type}, {"topic", topic}});
       }
+      case CommandTarget::Component: return component(c, t);
       case CommandTarget::View: {
         std::lock_guard lock(mutex_);
         camera_request_ = c.args["name"].get<std::string>();
@@ -180,9 +216,28 @@ class Session {
     return json_reply(202, {{"ok", true}, {"type", c.type}});
   }
 
+  // Starts or stops one component (`component` command); logged as `experimenter`/`component`.
+  HttpReply component(const Command& c, double t) {
+    const auto name = c.args["name"].get<std::string>();
+    const bool start = c.args["action"] == "start";
+    if (name == "robot" && !robot_) return error_reply(409, "'component': a child-child session has no robot side");
+    if (name == "cameras" && !cameras_) {
+      return error_reply(409, "'component': the scenario lists no cameras (cameras: in the scenario, docs/scenarios.md)");
+    }
+    log_.add({t, "experimenter", "component", c.args});
+    if (name == "robot") robot_->push(c);
+    if (name == "recorder") recorder_->request(start);
+    if (name == "cameras") cameras_->request(start);
+    return json_reply(202, {{"ok", true}, {"type", c.type}});
+  }
+
   SessionLog log_;
   ExperimentManager experiment_;
   std::string scene_;
+  WebSignals signals_;
+  std::unique_ptr<RecorderSwitch> recorder_;
+  std::unique_ptr<ObserverSwitch> cameras_;
+  std::vector<std::string> camera_names_;
   std::vector<std::string> item_names_;
   std::map<std::string, std::string> item_pictures_;  // API path → PNG
   std::unique_ptr<WizardRobot> robot_;
@@ -221,6 +276,30 @@ class CameraSink final : public runner::FrameSink {
   double stamp_ = 0.0;
 };
 
+/// The scenario's cameras on their Foxglove channels: every rendered colour frame as a JPEG CompressedImage in the
+/// camera's optical frame, while a Foxglove client is connected (the server's per-client queue cap applies).
+class FoxgloveCameras final : public runner::FrameSink {
+ public:
+  FoxgloveCameras(WebServer& server, const runner::Scenario& scenario) : server_(server), quality_(scenario.recording.jpeg_quality) {
+    for (std::size_t i = 0; i < scenario.cameras.size(); ++i) {
+      channels_[scenario.cameras[i].name] = {kFoxgloveFirstCamera + static_cast<int>(i),
+                                             recording::camera_topics(scenario.cameras[i].name).rgb_frame};
+    }
+  }
+  void write(const stage::FramePack& frame) override {
+    const auto it = channels_.find(frame.camera);
+    if (frame.rgb.empty() || it == channels_.end() || server_.foxglove_clients() == 0) return;
+    const auto stamp_ns = static_cast<std::uint64_t>(unix_ms() * 1e6);
+    server_.publish_foxglove({foxglove_camera(it->second.first, it->second.second,
+                                              recording::encode_jpeg(frame.rgb, quality_), stamp_ns)});
+  }
+
+ private:
+  WebServer& server_;
+  int quality_;
+  std::map<std::string, std::pair<int, std::string>> channels_;  // camera → (channel id, optical frame)
+};
+
 /// Paces the episode to the wall clock and turns every tick into a state frame for the page.
 class WebObserver final : public runner::EpisodeObserver {
  public:
@@ -245,7 +324,14 @@ class WebObserver final : public runner::EpisodeObserver {
     auto frame = tick_json(s);
     const auto stamp_ns = static_cast<std::uint64_t>(tick_ms * 1e6);
     std::vector<FoxgloveMessage> foxglove;
-    if (server_.foxglove_clients() > 0) foxglove.push_back(foxglove_tf(*s.tray, stamp_ns));
+    if (server_.foxglove_clients() > 0) {
+      foxglove.push_back(foxglove_tf(*s.tray, stamp_ns));
+      if (s.robot != nullptr) {  // robot_state_publisher's links and naoqi_driver's joint states
+        if (!nao_links_) nao_links_ = std::make_unique<recording::NaoLinkFrames>(info_.scenario->robot.arm_reach_m);
+        foxglove.push_back(foxglove_robot_tf(nao_links_->compute(s.robot->joint_names, s.robot->positions), stamp_ns));
+        foxglove.push_back(foxglove_joint_states(*s.robot, stamp_ns));
+      }
+    }
     if (!footprints_latched_) {
       footprints_latched_ = true;
       server_.latch_foxglove(foxglove_footprints(*s.tray, stamp_ns));
@@ -277,6 +363,7 @@ class WebObserver final : public runner::EpisodeObserver {
     frame["tick_unix_ms"] = tick_ms;
     frame["robot_control"] = session_.robot() != nullptr ? session_.robot()->state() : nlohmann::json();
     frame["experiment"] = session_.experiment().state();
+    frame["components"] = session_.components(stage);
     nlohmann::json events = nlohmann::json::array();
     for (const auto& e : session_.log().take_new()) events.push_back(e.to_json());
     frame["events"] = std::move(events);
@@ -345,6 +432,7 @@ class WebObserver final : public runner::EpisodeObserver {
   CameraSink camera_sink_;
   runner::Scenario camera_scenario_;
   std::unique_ptr<runner::CameraRig> rig_;
+  std::unique_ptr<recording::NaoLinkFrames> nao_links_;  // built when the first Foxglove client wants the Nao
   std::string camera_name_;
   std::optional<Clock::time_point> start_;
   double t0_ = 0.0;
@@ -354,14 +442,17 @@ class WebObserver final : public runner::EpisodeObserver {
   std::uint64_t seq_ = 0;
 };
 
-/// The episode owns its observers; the session's observer outlives it (for the frames after the episode).
+/// The episode owns its observers; the session's outlive it (for the frames after the episode and the API).
 class ObserverRef final : public runner::EpisodeObserver {
  public:
-  explicit ObserverRef(WebObserver& observer) : observer_(observer) {}
+  explicit ObserverRef(runner::EpisodeObserver& observer) : observer_(observer) {}
+  void begin(const runner::EpisodeInfo& info) override { observer_.begin(info); }
   void observe(const runner::EpisodeSnapshot& snapshot) override { observer_.observe(snapshot); }
+  void end(runner::EpisodeResult& result) override { observer_.end(result); }
+  void abort() override { observer_.abort(); }
 
  private:
-  WebObserver& observer_;
+  runner::EpisodeObserver& observer_;
 };
 
 }  // namespace
@@ -372,8 +463,12 @@ WebSessionReport serve_web(const runner::Scenario& scenario, std::uint64_t seed,
   // the session so that it stops (joining its thread) before the session goes.
   std::optional<Session> session;
   std::atomic<Session*> ready{nullptr};
+  auto server_options = options.server;
+  std::vector<std::string> cameras;
+  for (const auto& c : scenario.cameras) cameras.push_back(c.name);
+  server_options.foxglove = foxglove_channels(cameras, scenario.condition == "child-robot");
   WebServer server(
-      options.server,
+      server_options,
       [&ready](const HttpRequest& r) {
         auto* s = ready.load();
         return s != nullptr ? s->api(r) : error_reply(503, "the session is starting");
@@ -397,10 +492,20 @@ WebSessionReport serve_web(const runner::Scenario& scenario, std::uint64_t seed,
   WebSessionReport report;
   const runner::EpisodeInfo info{&scenario, "web", seed};
   WebObserver observer(*session, server, info, options.rate, options.out, report.ticks);
-  runner::EpisodeObservers observers;
+  runner::EpisodeObservers observers;  // the page first (it adds the tick's events to the session log), then the bag
   observers.push_back(std::make_unique<ObserverRef>(observer));
+  observers.push_back(std::make_unique<ObserverRef>(session->recorder()));
+  if (options.also_observe != nullptr) observers.push_back(std::make_unique<ObserverRef>(*options.also_observe));
+  FoxgloveCameras foxglove_cameras(server, scenario);
+  if (!scenario.cameras.empty()) {  // the scenario's cameras, at their rates: into the bag and to Foxglove
+    std::vector<runner::FrameSink*> sinks{&session->recorder(), &foxglove_cameras};
+    if (options.also_frames != nullptr) sinks.push_back(options.also_frames);
+    auto& rig = session->set_cameras(std::make_unique<runner::CameraRig>(
+        scenario, runner::renderer_options(scenario.rendering), std::move(sinks)));
+    observers.push_back(std::make_unique<ObserverRef>(rig));
+  }
   report.result = runner::run_episode(scenario, seed, runner::SharedModels::shipped(), stop, observers, info, nullptr,
-                                      session->robot());
+                                      session->robot(), &session->signals());
   if (!report.result.aborted) {
     std::ofstream(options.out / "episode.json") << report.result.record.dump(2) << '\n';
     while (options.linger && !session->finalised() && !stop.load()) {

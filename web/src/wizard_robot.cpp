@@ -126,6 +126,16 @@ void WizardRobot::apply(const Command& command, double t, const sim::Sandtray& t
     log(tray, "wizard", "sparc_timeout", {{"seconds", sparc_timeout_s_}});
     return;
   }
+  if (command.type == "component") {  // the robot side stopped: the policy is paused (and its running move cancelled)
+    paused_ = a["action"] == "stop";
+    if (proposal_) decide_proposal("dropped", t, tray, step);
+    if (paused_ && move_source_ == "policy" && executor_->status() == planning::MoveStatus::Running) {
+      executor_->cancel();
+      finish_move(tray);
+    }
+    log(tray, "robot_side", paused_ ? "paused" : "resumed", {{"mode", std::string(mode_name(mode_))}});
+    return;
+  }
   if (command.type == "sparc") {
     const auto decision = a["decision"].get<std::string>();
     if (!proposal_) {
@@ -198,8 +208,9 @@ void WizardRobot::execute(const policies::Action& action, const std::string& sou
     }
   } else if (const auto* point = std::get_if<policies::PointAt>(&action)) {
     step.out.point_at = point->point;
-  } else if (const auto* say = std::get_if<policies::Say>(&action)) {
+  } else if (const auto* say = std::get_if<policies::Say>(&action)) {  // heard and logged by the episode
     last_said_ = say->text;
+    step.out.say.push_back({say->text, say->addressee});
     speech_pending_ = source != "wizard";
   } else if (std::holds_alternative<policies::CancelMove>(action)) {
     if (executor_->status() == planning::MoveStatus::Running) {
@@ -210,7 +221,7 @@ void WizardRobot::execute(const policies::Action& action, const std::string& sou
 }
 
 void WizardRobot::run_policy(double t, const sim::Sandtray& tray, Step& step) {
-  if (mode_ == RobotMode::Wizard) {
+  if (mode_ == RobotMode::Wizard || paused_) {
     interaction_events_.clear();
     return;
   }
@@ -289,6 +300,7 @@ const policies::Observation& WizardRobot::observation(double t, const sim::Sandt
 nlohmann::json WizardRobot::state() const {
   nlohmann::json out{{"mode", std::string(mode_name(mode_))},
                      {"sparc_timeout_s", sparc_timeout_s_},
+                     {"paused", paused_},
                      {"last_said", last_said_},
                      {"move", nullptr},
                      {"proposal", nullptr},

@@ -51,6 +51,10 @@ class PairCoder {
   const ChildTimeline& timeline(int player, Axis axis) const {
     return coded_[static_cast<std::size_t>(player)][static_cast<std::size_t>(axis)].timeline;
   }
+  /// The label player 0 or 1 is coded with now on `axis` (the bout in progress).
+  std::uint8_t current(int player, Axis axis) const {
+    return coded_[static_cast<std::size_t>(player)][static_cast<std::size_t>(axis)].label;
+  }
 
  private:
   struct Track {

@@ -146,7 +146,7 @@ struct CoderParams {
   double watch_window_s = 4.0;    ///< window of that share (s)
   double min_bout_s = 3.0;        ///< a new label must hold this long before the coder switches to it (s)
   double joint_distance_m = 0.12; ///< a touch this close to the partner's recent touch is on the partner's area
-  double task_min_bout_s = 4.0;   ///< task engagement: a new label must hold this long before the coder switches (s)
+  double task_min_bout_s = 4.5;   ///< task engagement: a new label must hold this long before the coder switches (s)
   double evidence_hold_s = 3.0;   ///< an act (a drag, a scribble, a friendly word) counts as recent this long (s)
   double judgement_window_s = 10.0;  ///< the coder judges play and attitude over running shares of this window (s)
   double play_share = 0.2;        ///< below this running share of recent play (of any kind) a child is not playing

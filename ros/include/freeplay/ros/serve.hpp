@@ -4,9 +4,11 @@
 
 #include <atomic>
 #include <cstdint>
+#include <memory>
 #include <string>
 
 #include "freeplay/runner/episode.hpp"
+#include "freeplay/runner/frame_sink.hpp"
 
 namespace freeplay::ros_live {
 
@@ -24,6 +26,33 @@ struct ServeTiming {
   double p50_late_ms = 0.0;  ///< median lateness
   double p99_late_ms = 0.0;  ///< 99th percentile lateness
   double max_late_ms = 0.0;  ///< largest lateness
+};
+
+/// The ROS graph side of a served episode: publishes every tick of the game and the Nao on the graph (paced to the
+/// wall clock), takes `sandtray/signals/*` from it and, with `external_robot`, the robot's commands. `serve` runs an
+/// episode with it; `freeplay serve --web --web-graph` attaches it to the web session's episode.
+class GraphSide {
+ public:
+  /// Starts the ROS client (std::runtime_error when no master answers) and the nodes of `scenario`.
+  GraphSide(const runner::Scenario& scenario, std::uint64_t seed, const ServeOptions& options);
+  ~GraphSide();
+  GraphSide(const GraphSide&) = delete;
+  GraphSide& operator=(const GraphSide&) = delete;
+
+  /// The observer publishing each tick (attach it to the episode; valid while this lives).
+  runner::EpisodeObserver& publisher();
+  /// Where the scenario cameras' frames go: their drivers' topics (colour only).
+  runner::FrameSink& cameras();
+  /// The signals received from the graph since the last call.
+  runner::SignalSource& signals();
+  /// The external robot (`external_robot` in a child-robot scenario), or null.
+  runner::RobotActionSource* robot();
+  /// Publication timing of the ticks so far.
+  ServeTiming timing() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
 };
 
 /// Runs one live episode of `scenario` from root seed `seed`; throws std::runtime_error when no master answers;

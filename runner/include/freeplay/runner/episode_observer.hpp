@@ -3,6 +3,7 @@
 // 10 Hz tick of every protocol stage (ground truth, unlike the policy's Observation). Observers only read.
 
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -34,6 +35,9 @@ struct ChildSnapshot {
   Eigen::Vector3d head = Eigen::Vector3d::Zero();        ///< where the child's face is (sandtray frame, m)
   std::vector<std::pair<int, Vec2>> touches;     ///< this child's fingers on the screen: (finger id, point)
   bool speaking = false;                         ///< an utterance is under way
+  /// Simulation only: the coder's current labels (task engagement, social engagement, social attitude; the
+  /// PInSoRo names), empty before free play.
+  std::array<std::string_view, 3> coded{};
 };
 
 /// The robot as the cameras and `joint_states` see it (child-robot episodes only).

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "freeplay/core/geometry.hpp"
@@ -17,11 +18,18 @@ class Sandtray;
 
 namespace freeplay::runner {
 
+/// One utterance of the robot: what it says and to whom ("", "purple", "yellow").
+struct RobotUtterance {
+  std::string text;  ///< the words (the Nao's TTS input)
+  std::string to;    ///< addressee; empty: everyone
+};
+
 /// What an external robot does during one free-play tick.
 struct RobotCommands {
   std::vector<Vec2> finger;                   ///< robot-finger poses (`/poses`, sandtray frame), in order
   std::optional<Eigen::Vector3d> look_at;     ///< a gaze target (sandtray frame, m)
   std::optional<Vec2> point_at;               ///< a pointing target on the screen (sandtray frame, m)
+  std::vector<RobotUtterance> say;            ///< utterances started this tick (as a policy's `say`: heard, logged)
 };
 
 /// Supplies the robot's actions of an episode instead of its policy and move executor.

@@ -23,7 +23,7 @@ class CommandError : public std::runtime_error {
 };
 
 /// Where a validated command goes.
-enum class CommandTarget { Robot, Protocol, Experiment, View };
+enum class CommandTarget { Robot, Protocol, Experiment, View, Component };
 
 /// A validated command: its type and its normalised arguments (every field present and in range).
 struct Command {

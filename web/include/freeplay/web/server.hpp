@@ -39,6 +39,7 @@ struct ServerOptions {
   std::string token;                  ///< required of every request when not empty
   std::size_t max_client_queue_bytes = 512 * 1024;  ///< a client with more unsent bytes skips state frames
   std::size_t max_body_bytes = 64 * 1024;          ///< larger request bodies get 413
+  std::vector<FoxgloveChannel> foxglove;           ///< the channels Foxglove clients are offered (empty: the game's)
 };
 
 /// Counters of the server (for tests and the report).

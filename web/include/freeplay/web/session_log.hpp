@@ -20,6 +20,8 @@ class SessionLog {
   void add(Event event);
   /// The events added since the previous call (for the next state frame).
   std::vector<Event> take_new();
+  /// Replaces `out` with the events after position `cursor` and moves `cursor` to the end (a reader of its own).
+  void events_since(std::size_t& cursor, std::vector<Event>& out) const;
   /// Every event so far.
   std::vector<Event> all() const;
 

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "freeplay/runner/episode.hpp"
+#include "freeplay/runner/frame_sink.hpp"
 #include "freeplay/web/server.hpp"
 #include "freeplay/web/wizard_robot.hpp"
 
@@ -25,6 +26,11 @@ struct WebSessionOptions {
   RobotMode mode = RobotMode::Autonomous;      ///< who drives the robot at the start
   double sparc_timeout_s = 2.0;                ///< SPARC: a proposal executes after this many seconds unless vetoed
   bool linger = true;                          ///< after the episode, serve until `finalise` or the stop flag
+  bool record = false;                         ///< the bag recorder writes from the start (else paused until the
+                                               ///< page starts it; the scenario's `record: true` also starts it)
+  runner::SignalSource* signals = nullptr;     ///< `sandtray/signals/*` from another source (a ROS graph), or null
+  runner::EpisodeObserver* also_observe = nullptr;  ///< another observer of the episode (a ROS graph's publisher)
+  runner::FrameSink* also_frames = nullptr;    ///< another sink of the scenario cameras' frames (the graph's topics)
   std::function<void(const std::string& url)> on_listening;  ///< told the page's URL once the server listens
   std::function<void(CommandSink)> on_commands;  ///< given the session's command entry (other sources: ROS), then
                                                  ///< an empty one when the session ends

@@ -49,7 +49,7 @@ class WizardRobot final : public runner::RobotActionSource {
   /// Hands over what the episode emitted and where the children's faces are (sim thread, after each tick).
   void observe(std::span<const Event> events, const std::map<std::string, Eigen::Vector3d>& faces);
 
-  /// The robot's side of the state frame: mode, move, pending proposal, last utterance (sim thread).
+  /// The robot's side of the state frame: mode, paused, move, pending proposal, last utterance (sim thread).
   nlohmann::json state() const;
 
  private:
@@ -88,6 +88,7 @@ class WizardRobot final : public runner::RobotActionSource {
   std::string move_item_;
   Vec2 move_target_ = Vec2::Zero();
   bool speech_pending_ = false;
+  bool paused_ = false;  // the robot side is stopped: the policy is not consulted
   std::string last_said_;
   double last_t_ = 0.0;
 };
