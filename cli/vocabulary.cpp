@@ -10,6 +10,9 @@ namespace freeplay::cli {
 runner::ScenarioVocabulary scenario_vocabulary() {
   runner::ScenarioVocabulary v;
   v.policies = policies::policy_names();
+#ifndef FREEPLAY_WITH_ESPEAK
+  v.voices = {"babble"};  // built without the optional espeak-ng voice (voice_espeak/, docs/recording.md)
+#endif
   return v;
 }
 

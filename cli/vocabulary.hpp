@@ -5,7 +5,7 @@
 
 namespace freeplay::cli {
 
-/// Policies, planners and cameras known to this build.
+/// Policies, planners, cameras and audio voices known to this build.
 runner::ScenarioVocabulary scenario_vocabulary();
 
 /// The scenarios folder shipped with the program (`scenarios/` of the source tree, or $FREEPLAY_SCENARIOS_DIR).

@@ -12,6 +12,7 @@ packages=(
   librosbag-storage-dev libsensor-msgs-dev libtf2-msgs-dev libgeometry-msgs-dev libstd-msgs-dev
   libvisualization-msgs-dev librcpputils-dev librcutils-dev libament-index-cpp-dev python3-rosbag
   libmp3lame-dev libssl-dev
+  libespeak-ng-dev espeak-ng-data  # the optional espeak-ng voice (voice_espeak/, GPL-3; babble without it)
   # ROS 1 on a live graph (ros/: freeplay serve / robot) and its message generators and tests
   libroscpp-dev libactionlib-dev libactionlib-msgs-dev libnav-msgs-dev libros-rosgraph-msgs-dev python3-genmsg
   python3-gencpp python3-genpy ros-std-msgs ros-geometry-msgs ros-nav-msgs ros-actionlib-msgs python3-rospy

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -261,6 +262,13 @@ void Schema::validate(YAML::Node node, const std::string& path, const std::strin
           alternative->validate(node, path, file, trial);  // insert the defaults into the real node
           return;
         }
+      }
+      // A map or a list fits only the one map or list form there is: its own errors name the key inside.
+      const auto same_kind = [&](const std::shared_ptr<const Schema>& a) {
+        return (node.IsMap() && a->kind_ == Kind::Map) || (node.IsSequence() && a->kind_ == Kind::List);
+      };
+      if (std::count_if(alternatives_.begin(), alternatives_.end(), same_kind) == 1) {
+        return (*std::find_if(alternatives_.begin(), alternatives_.end(), same_kind))->validate(node, path, file, errors);
       }
       return wrong(fmt::format("found {}, which matches none of the accepted forms", kind_name(node)));
     }

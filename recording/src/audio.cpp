@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <deque>
+#include <type_traits>
 
 #include "freeplay/core/error.hpp"
 #include "freeplay/core/rng.hpp"
@@ -238,6 +239,24 @@ std::vector<float> read_wav(const std::filesystem::path& file) {
   std::vector<float> out;
   std::int16_t v = 0;
   while (in.read(reinterpret_cast<char*>(&v), 2)) out.push_back(static_cast<float>(v) / 32767.0F);
+  return out;
+}
+
+std::vector<float> decode_mp3(const std::vector<std::uint8_t>& mp3) {
+  const std::unique_ptr<std::remove_pointer_t<hip_t>, int (*)(hip_t)> hip(hip_decode_init(), hip_decode_exit);
+  if (!hip) throw std::runtime_error("LAME's MP3 decoder did not start");
+  std::vector<float> out;
+  std::vector<short> left(1 << 16), right(1 << 16);  // hip writes up to a second's worth per call
+  std::vector<unsigned char> bytes(mp3.begin(), mp3.end());
+  constexpr std::size_t kFeed = 4096;
+  for (std::size_t at = 0; at <= bytes.size(); at += kFeed) {
+    const std::size_t n = at < bytes.size() ? std::min(kFeed, bytes.size() - at) : 0;  // a last empty call drains it
+    int got = hip_decode(hip.get(), bytes.data() + at, n, left.data(), right.data());
+    for (; got > 0; got = hip_decode(hip.get(), bytes.data() + at, 0, left.data(), right.data())) {
+      for (int i = 0; i < got; ++i) out.push_back(static_cast<float>(left[static_cast<std::size_t>(i)]) / 32767.0F);
+    }
+    if (got < 0) throw std::runtime_error(fmt::format("the MP3 stream does not decode (byte {})", at));
+  }
   return out;
 }
 

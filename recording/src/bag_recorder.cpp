@@ -22,6 +22,7 @@
 #include "freeplay/core/error.hpp"
 #include "freeplay/core/task_pool.hpp"
 #include "freeplay/recording/audio.hpp"
+#include "freeplay/recording/audio_voice.hpp"
 #include "freeplay/recording/audio_data.hpp"
 #include "freeplay/recording/bag_description.hpp"
 #include "freeplay/recording/camera_topics.hpp"
@@ -51,7 +52,7 @@ using detail::yaw_quaternion;
 
 constexpr double kFootprintsAfterS = 1.0;  // the game publishes /footprints once, ~1 s after start
 constexpr double kCameraMaxPhaseS = 0.012;  // a 30 Hz camera's publishing phase stays well inside its 33 ms period
-// Voices of the adults (the babble voice; docs/recording.md): pitch, articulation rate and where they speak from.
+// Voices of the adults (docs/recording.md, Audio): pitch, articulation rate and where they speak from.
 constexpr double kRobotPitchHz = 200.0;
 constexpr double kExperimenterPitchHz = 210.0;
 constexpr double kAdultSyllablesPerS = 4.0;
@@ -103,6 +104,7 @@ struct BagRecorder::Impl {
   std::unique_ptr<PoseRecorder> poses;  // freeplay.poses.json
   std::unique_ptr<SessionVideos> videos;  // video/camera_*_raw.mkv (when cameras render)
   std::vector<std::pair<std::string, std::unique_ptr<MicrophoneStream>>> microphones;  // topic → SR300 microphone
+  std::unique_ptr<Voice> voice;  // record.voice
   std::uint64_t utterances = 0;
   PublisherClocks clocks;  // every real publisher's phase and jitter (seeded by the episode)
   std::map<double, std::string> markers;
@@ -375,14 +377,16 @@ struct BagRecorder::Impl {
       u.seed = splitmix64(seed ^ fnv1a64(e.source) ^ ++utterances);
       u.pitch_hz = e.source == "robot" ? kRobotPitchHz : kExperimenterPitchHz;
       u.mouth = e.source == "robot" ? kRobotMouth : kExperimenterMouth;
+      u.text = e.data.value("text", "");
+      u.kind = e.data.value("kind", "");
       for (const auto& c : s.children) {
         if (child && "child." + c.seat == e.source) {
           u.pitch_hz = child_pitch_hz(c.age_years);
           u.mouth = c.head;
         }
       }
-      const auto voice = babble(u);
-      for (auto& [topic, mic] : microphones) mic->add(u, voice);
+      const auto sound = voice->speak(u);
+      for (auto& [topic, mic] : microphones) mic->add(u, sound);
     }
     for (auto& [topic, mic] : microphones) {
       for (auto& [captured, bytes] : last ? mic->finish() : mic->advance(t)) {
@@ -435,6 +439,7 @@ BagRecorder::BagRecorder(std::filesystem::path sessions_root, runner::RecordSett
     : impl_(std::make_unique<Impl>()) {
   impl_->root = std::move(sessions_root);
   impl_->settings = std::move(settings);
+  impl_->voice = make_voice(impl_->settings.voice);
   impl_->encoders = std::make_unique<TaskPool>(impl_->settings.encoder_threads);
 }
 

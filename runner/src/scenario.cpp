@@ -133,7 +133,7 @@ ControllerSpec controller_from(const YAML::Node& node) {
 
 std::shared_ptr<const Schema> build_scenario_schema(const ScenarioVocabulary& vocabulary) {
   auto record_map = std::vector<Field>{with_default("bag", S::boolean(), "true", "write the ROS bag")};
-  for (auto& f : SchemaArchive::fields_of<RecordSettings>()) record_map.push_back(std::move(f));
+  for (auto& f : SchemaArchive::fields_of<RecordSettings>(vocabulary)) record_map.push_back(std::move(f));
   return S::map({
       required("name", S::string(), "short identifier"),
       with_default("description", S::string(), "\"\""),
@@ -235,7 +235,7 @@ Scenario scenario_from_document(YamlDocument document, const std::vector<std::st
   s.rendering = read_settings<RenderingSettings>(root["rendering"]);
   if (const auto& r = root["record"]; r.IsMap()) {
     s.record = r["bag"].as<bool>();
-    s.recording = read_settings<RecordSettings>(r);
+    s.recording = read_settings<RecordSettings>(r, vocabulary);
   } else {
     s.record = r.as<bool>();
   }

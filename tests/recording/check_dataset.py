@@ -1,5 +1,6 @@
 """Loads a synthetic PInSoRo dataset with python3 + yaml + csv (as docs/dataset.md shows) and checks it against the
-run it came from: layout, experiment.yaml keys, bag description, the 449-column tables and their label shares."""
+run it came from: layout, experiment.yaml keys, bag description, md5 files, audio, the 449-column tables and their
+label shares."""
 import csv
 import glob
 import hashlib
@@ -40,9 +41,17 @@ for path in sessions:
     topics = {t["topic"]: t for t in bag["topics"]}
     if "frequency" not in topics["/tf"]:
         errors.append("%s: no /tf frequency" % name)
-    digest = hashlib.md5(open(os.path.join(folder, "freeplay.bag"), "rb").read()).hexdigest()
-    if open(os.path.join(folder, "freeplay.bag.md5")).read().split()[0] != digest:
-        errors.append("%s: freeplay.bag.md5 does not match" % name)
+    # The md5 files the dataset ships (free-play-sandbox.md §4.3), each naming its file's digest.
+    for shipped in ["freeplay.bag", "freeplay.poses.json"] + [os.path.basename(t) for t in glob.glob(os.path.join(folder, "pinsoro-*.csv"))]:
+        digest = hashlib.md5(open(os.path.join(folder, shipped), "rb").read()).hexdigest()
+        md5 = os.path.join(folder, shipped + ".md5")
+        if not os.path.exists(md5) or open(md5).read().split()[0] != digest:
+            errors.append("%s: %s.md5 does not match" % (name, shipped))
+    for camera in ("purple", "yellow"):
+        for ext in ("mp3", "wav"):
+            audio = os.path.join(folder, "audio", "freeplay_camera_%s_audio.%s" % (camera, ext))
+            if not os.path.exists(audio) or os.path.getsize(audio) == 0:
+                errors.append("%s: no %s" % (name, os.path.relpath(audio, folder)))
     annotations = glob.glob(os.path.join(folder, "freeplay.annotations.*.yaml"))
     if len(annotations) != 1 or "purple" not in yaml.safe_load(open(annotations[0])):
         errors.append("%s: no annotation file with purple" % name)

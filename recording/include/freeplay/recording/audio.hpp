@@ -1,7 +1,7 @@
 #pragma once
 // Sound for the recorded sessions (free-play-sandbox.md §1.4, §4.2): every utterance (child, robot, experimenter)
-// spoken by a babble/formant voice of our own (a child's pitch, the utterance's articulation rate; deterministic for
-// a seed), mixed per SR300 microphone with distance attenuation and room noise, encoded as audio_capture does
+// spoken by a voice (audio_voice.hpp: the babble/formant voice of our own here, or espeak-ng; a child's pitch, the
+// utterance's articulation rate; deterministic for a seed), mixed per SR300 microphone with distance attenuation and room noise, encoded as audio_capture does
 // (LAME MP3, 16 kHz mono, 128 kbps) and cut into one message per MP3 frame (≈ 27.8 per second).
 
 #include <cstdint>
@@ -30,6 +30,8 @@ struct Utterance {
   double pitch_hz = 280.0;   ///< fundamental frequency
   Eigen::Vector3d mouth = Eigen::Vector3d::Zero();  ///< where it is spoken (sandtray frame, m)
   std::uint64_t seed = 0;    ///< the voice's random stream
+  std::string text;          ///< the words (robot, experimenter); empty for a child, whose words are not simulated
+  std::string kind;          ///< a child's kind of utterance (comment, question, …), as its speech event says
 };
 
 /// The babble voice: `syllables` consonant–vowel syllables (noise burst, then a pulse train through three vowel
@@ -66,5 +68,8 @@ class MicrophoneStream {
 std::vector<double> voice_onsets_s(const std::vector<float>& samples, double min_silence_s = 0.3);
 /// The 16-bit mono samples of a WAV file written by MicrophoneStream, as floats in [−1, 1].
 std::vector<float> read_wav(const std::filesystem::path& file);
+/// The mono samples an MP3 stream (e.g. a microphone topic's chunks concatenated) decodes to, as floats in [−1, 1],
+/// by LAME's own decoder (hip); the decoder's delay is kept (≈ 1 100 samples at 16 kHz).
+std::vector<float> decode_mp3(const std::vector<std::uint8_t>& mp3);
 
 }  // namespace freeplay::recording

@@ -20,6 +20,7 @@ struct ScenarioVocabulary {
                                       "CameraBottom"};  ///< stage cameras
   std::vector<std::string> items = {"zebra", "elephant", "ball", "lion", "giraffe", "caravan", "crocodile",
                                     "hippo", "boy", "girl"};  ///< sandtray items (controller `move` targets)
+  std::vector<std::string> voices = {"babble", "espeak"};  ///< audio voices (`record.voice`) this binary has
 
   /// Same names in the same order.
   bool operator==(const ScenarioVocabulary&) const = default;
@@ -175,16 +176,19 @@ struct RecordSettings {
   int chunk_kb = 768;                 ///< bag chunk size (rosbag's default): at most this much is lost on a kill
   std::string compression = "none";   ///< bag chunk compression: "none" (as the real bags), "lz4", "bz2"
   int encoder_threads = 2;            ///< threads compressing camera images (0: on the episode's own thread)
+  std::string voice = "babble";       ///< speech synthesiser of the audio: "babble" (ours) or "espeak" (espeak-ng)
 
   /// The keys of the `record:` map besides `bag`.
   template <typename Archive>
-  void visit(Archive& a) {
+  void visit(Archive& a, const ScenarioVocabulary& vocabulary) {
     a.field("jpeg_quality", jpeg_quality, Schema::integer(1, 100));
     a.field("png_level", png_level, Schema::integer(0, 9));
     a.field("chunk_kb", chunk_kb, Schema::integer(16, 1 << 20));
     a.field("compression", compression, Schema::enumeration({"none", "lz4", "bz2"}));
     a.field("encoder_threads", encoder_threads, Schema::integer(0, 64),
             "threads compressing camera images (0: the episode's thread)");
+    a.field("voice", voice, Schema::enumeration(vocabulary.voices),
+            "speech synthesiser of the audio: babble (ours) or espeak (espeak-ng, GPL-3; only in binaries built with it)");
   }
 };
 
