@@ -192,7 +192,10 @@ std::array<unsigned char, 3> zone_marker_rgb(std::string_view colour) {
   return {p[0], p[1], p[2]};
 }
 
-ZoneMap ZoneMap::segment(const cv::Mat& bgr, double metres_per_pixel) {
+namespace {
+
+// Checks the segmenters' input (a BGR image, a positive scale) and returns the height of its 200-px-wide copy.
+int checked_small_height(const cv::Mat& bgr, double metres_per_pixel) {
   if (bgr.empty()) throw InputError("the image is empty", "image", "a BGR CV_8UC3 image");
   if (bgr.type() != CV_8UC3) {
     throw InputError("the image has OpenCV type " + std::to_string(bgr.type()), "image", "a BGR CV_8UC3 image");
@@ -202,6 +205,13 @@ ZoneMap ZoneMap::segment(const cv::Mat& bgr, double metres_per_pixel) {
   }
   const int small_height =
       std::max(1, static_cast<int>(std::lround(static_cast<double>(bgr.rows) * kZoneSegmentationWidthPx / bgr.cols)));
+  return small_height;
+}
+
+}  // namespace
+
+ZoneMap ZoneMap::segment(const cv::Mat& bgr, double metres_per_pixel) {
+  const int small_height = checked_small_height(bgr, metres_per_pixel);
   cv::Mat hsv;
   cv::cvtColor(bgr, hsv, cv::COLOR_BGR2HSV);
   cv::Mat small_hsv;
@@ -292,15 +302,7 @@ std::array<cv::Rect, kZoneColours.size()> ZoneSegmenter::update_masks(const cv::
 }
 
 ZoneMap ZoneSegmenter::segment(const cv::Mat& bgr, double metres_per_pixel, std::optional<cv::Rect> changed) {
-  if (bgr.empty()) throw InputError("the image is empty", "image", "a BGR CV_8UC3 image");
-  if (bgr.type() != CV_8UC3) {
-    throw InputError("the image has OpenCV type " + std::to_string(bgr.type()), "image", "a BGR CV_8UC3 image");
-  }
-  if (!(metres_per_pixel > 0.0) || !std::isfinite(metres_per_pixel)) {
-    throw InputError("metres per pixel must be positive", "metres_per_pixel", "> 0");
-  }
-  const int small_height =
-      std::max(1, static_cast<int>(std::lround(static_cast<double>(bgr.rows) * kZoneSegmentationWidthPx / bgr.cols)));
+  const int small_height = checked_small_height(bgr, metres_per_pixel);
   const cv::Rect whole(0, 0, bgr.cols, bgr.rows);
   const cv::Size small_size(kZoneSegmentationWidthPx, small_height);
   if (hsv_.size() != bgr.size()) {

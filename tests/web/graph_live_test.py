@@ -16,7 +16,7 @@ import time
 import urllib.request
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from sparc_live_test import _answers, free_port, until  # noqa: E402  (the same harness)
+from sparc_live_test import free_port, start_rosmaster, until  # noqa: E402  (the same harness)
 
 FREEPLAY, SCENARIO = sys.argv[1], sys.argv[2]
 
@@ -44,13 +44,8 @@ def main():
             failures.append(what)
 
     try:
-        try:
-            procs.append(subprocess.Popen(["/usr/bin/rosmaster", "--core", "-p", str(port)], stdout=subprocess.DEVNULL,
-                                          stderr=subprocess.DEVNULL, start_new_session=True))
-        except OSError as e:
-            print(f"SKIPPED: rosmaster cannot start ({e})")
+        if not start_rosmaster(port, procs):
             return 77
-        until("rosmaster", lambda: _answers(uri), 20)
         # Greetings and tutorial last until the buttons; free play 60 s at most.
         serve = subprocess.Popen([FREEPLAY, "serve", SCENARIO, "--web", "0", "--web-graph", "--web-mode", "wizard",
                                   "--web-out", os.path.join(home, "session"), "--web-no-linger", "--seed", "7",

@@ -12,9 +12,9 @@
 
 namespace freeplay::web::test_http {
 
-/// Sends `method path` with `body` to 127.0.0.1:`port`: the status code and the body ({-1, ""} when unreachable).
-inline std::pair<int, std::string> request(int port, const std::string& method, const std::string& path,
-                                           const std::string& body = "") {
+/// Sends the raw HTTP `text` to 127.0.0.1:`port` on one connection: the status code and the body ({-1, ""} when
+/// unreachable or the answer is not HTTP).
+inline std::pair<int, std::string> send_raw(int port, const std::string& text) {
   const int fd = socket(AF_INET, SOCK_STREAM, 0);
   sockaddr_in addr{};
   addr.sin_family = AF_INET;
@@ -24,8 +24,6 @@ inline std::pair<int, std::string> request(int port, const std::string& method, 
     close(fd);
     return {-1, ""};
   }
-  const auto text = fmt::format("{} {} HTTP/1.1\r\nHost: x\r\nConnection: close\r\nContent-Length: {}\r\n\r\n{}", method,
-                                path, body.size(), body);
   (void)!write(fd, text.data(), text.size());
   std::string response;
   char buffer[4096];
@@ -34,6 +32,13 @@ inline std::pair<int, std::string> request(int port, const std::string& method, 
   if (response.size() < 12) return {-1, ""};
   const auto at = response.find("\r\n\r\n");
   return {std::stoi(response.substr(9, 3)), at == std::string::npos ? "" : response.substr(at + 4)};
+}
+
+/// Sends `method path` with `body` to 127.0.0.1:`port`: the status code and the body ({-1, ""} when unreachable).
+inline std::pair<int, std::string> request(int port, const std::string& method, const std::string& path,
+                                           const std::string& body = "") {
+  return send_raw(port, fmt::format("{} {} HTTP/1.1\r\nHost: x\r\nConnection: close\r\nContent-Length: {}\r\n\r\n{}",
+                                    method, path, body.size(), body));
 }
 
 /// POSTs `body` to /api/command.

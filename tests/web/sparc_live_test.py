@@ -36,6 +36,18 @@ def until(what, predicate, timeout=60):
         time.sleep(0.1)
 
 
+def start_rosmaster(port, procs):
+    """Starts rosmaster on `port` (appended to `procs`) and waits for it; False (said) when it cannot start."""
+    try:
+        procs.append(subprocess.Popen(["/usr/bin/rosmaster", "--core", "-p", str(port)], stdout=subprocess.DEVNULL,
+                                      stderr=subprocess.DEVNULL, start_new_session=True))
+    except OSError as e:
+        print(f"SKIPPED: rosmaster cannot start ({e})")
+        return False
+    until("rosmaster", lambda: _answers(f"http://127.0.0.1:{port}/"), 20)
+    return True
+
+
 def main():
     try:
         import rospy
@@ -50,13 +62,8 @@ def main():
     os.environ.pop("ROS_HOSTNAME", None)
     procs = []
     try:
-        try:
-            procs.append(subprocess.Popen(["/usr/bin/rosmaster", "--core", "-p", str(port)], stdout=subprocess.DEVNULL,
-                                          stderr=subprocess.DEVNULL, start_new_session=True))
-        except OSError as e:
-            print(f"SKIPPED: rosmaster cannot start ({e})")
+        if not start_rosmaster(port, procs):
             return 77
-        until("rosmaster", lambda: _answers(uri), 20)
         serve = subprocess.Popen([FREEPLAY, "serve", SCENARIO, "--web", "0", "--web-ros", "--web-mode", "wizard",
                                   "--web-out", os.path.join(home, "session"), "--web-no-linger", "--seed", "7",
                                   "--set", "protocol.greeting_s=1", "--set", "protocol.tutorial_s=1",

@@ -8,31 +8,14 @@
 
 #include "freeplay/core/error.hpp"
 #include "freeplay/web/server.hpp"
+#include "http_client.hpp"
 
 using namespace freeplay::web;
 
 namespace {
 
-// One HTTP/1.0 exchange with 127.0.0.1:`port`: the status code and the body.
-std::pair<int, std::string> http(int port, const std::string& request) {
-  const int fd = socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_port = htons(static_cast<std::uint16_t>(port));
-  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  if (connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
-    close(fd);
-    return {-1, ""};
-  }
-  (void)!write(fd, request.data(), request.size());
-  std::string response;
-  char buffer[4096];
-  for (ssize_t n; (n = read(fd, buffer, sizeof buffer)) > 0;) response.append(buffer, static_cast<std::size_t>(n));
-  close(fd);
-  if (response.size() < 12) return {-1, response};
-  const auto body = response.find("\r\n\r\n");
-  return {std::stoi(response.substr(9, 3)), body == std::string::npos ? "" : response.substr(body + 4)};
-}
+// One HTTP exchange with 127.0.0.1:`port`: the status code and the body.
+std::pair<int, std::string> http(int port, const std::string& request) { return test_http::send_raw(port, request); }
 
 std::string get(const std::string& target, const std::string& headers = "") {
   return "GET " + target + " HTTP/1.1\r\nHost: x\r\nConnection: close\r\n" + headers + "\r\n";
