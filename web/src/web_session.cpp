@@ -6,6 +6,9 @@
 
 #include <chrono>
 #include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <future>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <thread>
@@ -347,9 +350,10 @@ class WebObserver final : public runner::EpisodeObserver {
       }
     }
     if (!foxglove.empty()) server_.publish_foxglove(std::move(foxglove));
-    if (session_.take_screenshot_requests() > 0) screenshot(*s.tray, s.t);
     camera(s, frame);
     send(std::move(frame), std::string(s.stage), s.t, s.freeplay_t, tick_ms);
+    // After the tick's frame went out, so that the screen render does not delay the page.
+    if (session_.take_screenshot_requests() > 0) screenshot(*s.tray, s.t);
   }
 
   // A frame without a tick (after the episode): the experiment and the events still reach the page.
@@ -377,7 +381,16 @@ class WebObserver final : public runner::EpisodeObserver {
   // folder, named as the PInSoRo sessions' screenshots (freeplay-<n>-<date>_<time>.png).
   void screenshot(const sim::Sandtray& tray, double t) {
     const auto name = fmt::format("freeplay-{}-{:%Y-%m-%d_%H-%M-%S}.png", ++screenshots_, fmt::gmtime(std::time(nullptr)));
-    cv::imwrite((out_ / name).string(), tray.render_screen());
+    // The PNG is encoded and written beside the simulation; a pending write is waited for when the session ends.
+    pending_writes_.push_back(std::async(std::launch::async, [path = out_ / name, screen = tray.render_screen()] {
+      std::vector<std::uint8_t> png;
+      cv::imencode(".png", screen, png);
+      auto partial = path;
+      partial += ".part";
+      std::ofstream(partial, std::ios::binary).write(reinterpret_cast<const char*>(png.data()),
+                                                     static_cast<std::streamsize>(png.size()));
+      std::filesystem::rename(partial, path);  // never seen half-written
+    }));
     session_.log().add({t, "experiment", "screenshot_saved", {{"file", name}}});
   }
 
@@ -429,6 +442,7 @@ class WebObserver final : public runner::EpisodeObserver {
   std::filesystem::path out_;
   std::size_t& ticks_;
   int screenshots_ = 0;
+  std::vector<std::future<void>> pending_writes_;  // screenshots being written (their futures wait when destroyed)
   CameraSink camera_sink_;
   runner::Scenario camera_scenario_;
   std::unique_ptr<runner::CameraRig> rig_;
