@@ -53,6 +53,26 @@ class ArmChain {
         ++hinge;
       }
     }
+    // A hinge keeps the distance from its anchor to everything beyond it, so the chain's length is the sum of the
+    // anchor-to-anchor distances and the last anchor to the fingertip (any pose; here the model's reference one).
+    const Vector3d tip = fingertip(Vector3d::Zero(), Eigen::Quaterniond::Identity(), m->qpos0, nullptr);
+    if (hinge > 0 && hinge <= kMaxBodies) {
+      root_anchor_ = anchors_[0];
+      for (size_t h = 1; h < hinge; ++h) length_ += (anchors_[h] - anchors_[h - 1]).norm();
+      length_ += (tip - anchors_[hinge - 1]).norm();
+    } else {
+      length_ = std::numeric_limits<double>::infinity();
+    }
+  }
+
+  // False when no joint angles bring the fingertip within `xy_tolerance` of `target` on the screen plane with its
+  // height in [z_min, z_max]: that region is farther from the first hinge than the chain is long.
+  bool may_reach(const Vector3d& base_pos, const Eigen::Quaterniond& base_quat, const Vector3d& target,
+                 double xy_tolerance, double z_min, double z_max) const {
+    const Vector3d root = base_pos + base_quat * root_anchor_;
+    const double across = std::max(0.0, (target.head<2>() - root.head<2>()).norm() - xy_tolerance);
+    const double up = std::max({0.0, z_min - root.z(), root.z() - z_max});
+    return std::hypot(across, up) <= length_;
   }
 
   // The body the chain hangs from (the shoulder's parent).
@@ -162,6 +182,8 @@ class ArmChain {
   std::array<Vector3d, kMaxBodies> anchors_{};
   std::array<Vector3d, kMaxBodies> axes_{};
   std::array<Evaluation, kSlots> memo_{};
+  Vector3d root_anchor_ = Vector3d::Zero();  // the first hinge's anchor in the base frame (no hinge moves it)
+  double length_ = 0;  // the first hinge's anchor to the fingertip along the chain: no pose reaches farther
 };
 
 NaoController::NaoController(Stage& stage) : stage_(stage), nao_(stage.model().nao()) {
@@ -303,8 +325,7 @@ GazeResult NaoController::look_at(const Eigen::Vector3d& point) {
   return result;
 }
 
-PointingResult NaoController::solve_pointing(const Vector3d& target, const NaoJointVector& seed, bool retry,
-                                             NaoJointVector* out) {
+ArmBasePose NaoController::load_arm(const NaoJointVector& seed) {
   const mjModel* m = stage_.model().mj();
   if (scratch_ == nullptr) scratch_ = mj_makeData(m);
   mju_copy(scratch_->qpos, stage_.data()->qpos, m->nq);
@@ -317,16 +338,29 @@ PointingResult NaoController::solve_pointing(const Vector3d& target, const NaoJo
   }
   // The arm's base does not move with the pointing joints: the torso is the NAO's mocap body (its pose is the
   // mocap pose); any other base is posed once by the full kinematics.
-  Vector3d base_pos;
-  Eigen::Quaterniond base_quat;
+  ArmBasePose base;
   if (arm_chain_->base() == nao_.torso_body && m->body_parentid[nao_.torso_body] == 0) {
-    base_pos = Eigen::Map<const Vector3d>(scratch_->mocap_pos + 3 * nao_.torso_mocap);
-    base_quat = quat_at(scratch_->mocap_quat + 4 * nao_.torso_mocap).normalized();
+    base.position = Eigen::Map<const Vector3d>(scratch_->mocap_pos + 3 * nao_.torso_mocap);
+    base.orientation = quat_at(scratch_->mocap_quat + 4 * nao_.torso_mocap).normalized();
   } else {
     mj_kinematics(m, scratch_);
-    base_pos = Eigen::Map<const Vector3d>(scratch_->xpos + 3 * arm_chain_->base());
-    base_quat = quat_at(scratch_->xquat + 4 * arm_chain_->base());
+    base.position = Eigen::Map<const Vector3d>(scratch_->xpos + 3 * arm_chain_->base());
+    base.orientation = quat_at(scratch_->xquat + 4 * arm_chain_->base());
   }
+  return base;
+}
+
+bool NaoController::within_arm_length(const Vector3d& target) {
+  const ArmBasePose base = load_arm(targets_);
+  return arm_chain_->may_reach(base.position, base.orientation, target, kReachTolerance, 0.0, kMaxReachHeight);
+}
+
+PointingResult NaoController::solve_pointing(const Vector3d& target, const NaoJointVector& seed, bool retry,
+                                             NaoJointVector* out) {
+  const mjModel* m = stage_.model().mj();
+  const ArmBasePose base = load_arm(seed);
+  const Vector3d& base_pos = base.position;
+  const Eigen::Quaterniond& base_quat = base.orientation;
   Eigen::Matrix<double, 3, 5> j;
   const Eigen::Vector3d weights(1.0, 1.0, 0.3);  // the on-screen position matters more than the hover height
   constexpr double kDamping = 0.01;
@@ -380,20 +414,27 @@ PointingResult NaoController::solve_pointing(const Vector3d& target, const NaoJo
   result.fingertip = fingertip;
   result.error_m = (target - fingertip).head<2>().norm();
   result.height_m = fingertip.z();
-  result.reachable = result.error_m <= kReachTolerance && fingertip.z() > 0.0 && fingertip.z() < 0.1;
+  result.reachable = result.error_m <= kReachTolerance && fingertip.z() > 0.0 && fingertip.z() < kMaxReachHeight;
   return result;
 }
 
 PointingResult NaoController::point_at(const Eigen::Vector2d& screen_point) {
   if (!screen_point.allFinite()) throw InputError("pointing target is not finite", "screen point");
   const Vector3d target(screen_point.x(), screen_point.y(), kHoverHeight);
+  NaoJointVector pointing_seed = targets_;
+  for (size_t c = 0; c < kRightArm.size(); ++c) pointing_seed[static_cast<size_t>(kRightArm[c])] = kPointingSeed[c];
   NaoJointVector solution{};
+  if (!within_arm_length(target)) {
+    // No start reaches a target beyond the whole arm: only the stretch matters, and the default pose's start
+    // stretches it best (the solve from the current pose would be run and then beaten by this one).
+    const PointingResult stretched = solve_pointing(target, pointing_seed, true, &solution);
+    set_joint_targets(solution);
+    return stretched;
+  }
   PointingResult best = solve_pointing(target, targets_, false, &solution);
   if (!best.reachable) {
-    NaoJointVector seed = targets_;
-    for (size_t c = 0; c < kRightArm.size(); ++c) seed[static_cast<size_t>(kRightArm[c])] = kPointingSeed[c];
     NaoJointVector second{};
-    const PointingResult retry = solve_pointing(target, seed, true, &second);
+    const PointingResult retry = solve_pointing(target, pointing_seed, true, &second);
     if (retry.error_m < best.error_m) {
       best = retry;
       solution = second;

@@ -61,6 +61,23 @@ TEST(NaoController, ReportsUnreachableTargets) {
   EXPECT_THROW(nao.point_at(Eigen::Vector2d(std::nan(""), 0)), InputError);
 }
 
+// Beyond the whole arm's length the IK starts from the default pointing pose only, so the stretched arm does not
+// depend on where the arm was before (the arm does not jump between solutions as an item is dragged out of reach).
+TEST(NaoController, BeyondTheArmsLengthTheStretchDoesNotDependOnThePreviousPose) {
+  const Eigen::Vector2d far_away(0.3, -0.30);
+  std::vector<PointingResult> stretched;
+  for (const auto& before : kReachable) {
+    Stage stage(robot_model());
+    NaoController nao(stage);
+    nao.point_at(before);
+    stretched.push_back(nao.point_at(far_away));
+  }
+  for (const auto& result : stretched) {
+    EXPECT_FALSE(result.reachable);
+    EXPECT_EQ(result.fingertip, stretched.front().fingertip);
+  }
+}
+
 TEST(NaoController, ArmReachDiscUsesTheShoulderHeight) {
   Stage stage(robot_model());
   NaoController nao(stage);

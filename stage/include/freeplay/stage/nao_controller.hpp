@@ -4,6 +4,7 @@
 #include <mujoco/mujoco.h>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <memory>
 #include <vector>
 
@@ -27,6 +28,12 @@ struct PointingResult {
   Eigen::Vector3d fingertip = Eigen::Vector3d::Zero();  ///< fingertip position the joints produce (sandtray)
 };
 
+/// Where the right arm's chain hangs from (its base body's pose, sandtray frame).
+struct ArmBasePose {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();            ///< metres
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  ///< unit quaternion
+};
+
 /// A target on the screen at a given time (for synchronised drags).
 struct TimedScreenPoint {
   double time = 0;                                 ///< seconds
@@ -47,6 +54,8 @@ class NaoController {
   static constexpr double kHoverHeight = 0.02;
   /// Largest on-screen error for which a target counts as reached (m).
   static constexpr double kReachTolerance = 0.005;
+  /// Highest fingertip above the screen at which a target counts as reached (m).
+  static constexpr double kMaxReachHeight = 0.1;
 
   /// Controls the NAO of `stage`; throws InputError when the scene has no NAO.
   explicit NaoController(Stage& stage);
@@ -85,6 +94,8 @@ class NaoController {
  private:
   void write_targets();
   void place_base(const NaoJointVector& posture);
+  ArmBasePose load_arm(const NaoJointVector& seed);
+  bool within_arm_length(const Eigen::Vector3d& target);
   PointingResult solve_pointing(const Eigen::Vector3d& target, const NaoJointVector& seed, bool retry,
                                 NaoJointVector* out);
 
