@@ -81,47 +81,59 @@ void StrokePainter::cover(const std::vector<cv::Point2d>& path, double width_px,
   if (coverage_.size() < size) coverage_.resize(size, 0);
   span_lo_.assign(static_cast<std::size_t>(rows), cols);
   span_hi_.assign(static_cast<std::size_t>(rows), -1);
+  runs_.clear();
   const double outer = 0.5 * width_px + 0.5;  // coverage > 0 below this distance
   const double inner = 0.5 * width_px - 0.5;  // coverage 1 up to this distance
   const std::size_t segments = path.size() > 1 ? path.size() - 1 : 1;
+  const auto segment_at = [&path](std::size_t k) { return Segment(path[k], path[std::min(k + 1, path.size() - 1)]); };
+  // Each pixel ends with the largest coverage any segment gives it, so the order of the writes does not matter:
+  // every segment's fully covered run is filled first, and then a rim pixel that a later segment covers fully
+  // needs no distance.
   for (std::size_t k = 0; k < segments; ++k) {
-    const Segment segment(path[k], path[std::min(k + 1, path.size() - 1)]);
+    const Segment segment = segment_at(k);
     const int y0 = std::max(0, static_cast<int>(std::ceil(std::min(segment.a.y, segment.b.y) - outer)));
     const int y1 = std::min(rows - 1, static_cast<int>(std::floor(std::max(segment.a.y, segment.b.y) + outer)));
     for (int y = y0; y <= y1; ++y) {
       double lo = 0.0;
       double hi = 0.0;
       if (!segment.row_interval(y, outer, lo, hi)) continue;
-      const int x0 = std::max(0, static_cast<int>(std::ceil(lo)));
-      const int x1 = std::min(cols - 1, static_cast<int>(std::floor(hi)));
-      if (x0 > x1) continue;
+      RowRun run{k, y, std::max(0, static_cast<int>(std::ceil(lo))), std::min(cols - 1, static_cast<int>(std::floor(hi))),
+                 0, 0};
+      if (run.x0 > run.x1) continue;
       // Fully covered pixels [f0, f1] (none when f0 > f1); the rest of [x0, x1] is the anti-aliased rim.
-      int f0 = x1 + 1;
-      int f1 = x1;
+      run.f0 = run.x1 + 1;
+      run.f1 = run.x1;
       double in_lo = 0.0;
       double in_hi = 0.0;
       if (inner > 0.0 && segment.row_interval(y, inner, in_lo, in_hi)) {
-        f0 = std::max(x0, static_cast<int>(std::ceil(in_lo)));
-        f1 = std::min(x1, static_cast<int>(std::floor(in_hi)));
-        if (f0 > f1) f0 = x1 + 1, f1 = x1;
+        run.f0 = std::max(run.x0, static_cast<int>(std::ceil(in_lo)));
+        run.f1 = std::min(run.x1, static_cast<int>(std::floor(in_hi)));
+        if (run.f0 > run.f1) run.f0 = run.x1 + 1, run.f1 = run.x1;
       }
       std::uint8_t* row = coverage_.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(cols);
-      const auto rim = [&](int from, int to) {
-        for (int x = from; x <= to; ++x) {
-          if (row[x] == 255) continue;  // nothing can add to full coverage
-          const double a = std::clamp(outer - segment.distance(x, y), 0.0, 1.0);
-          row[x] = std::max(row[x], static_cast<std::uint8_t>(255.0 * a + 0.5));
-        }
-      };
-      if (f0 <= f1) {
-        rim(x0, f0 - 1);
-        std::fill(row + f0, row + f1 + 1, std::uint8_t{255});
-        rim(f1 + 1, x1);
-      } else {
-        rim(x0, x1);
+      if (run.f0 <= run.f1) std::fill(row + run.f0, row + run.f1 + 1, std::uint8_t{255});
+      span_lo_[static_cast<std::size_t>(y)] = std::min(span_lo_[static_cast<std::size_t>(y)], run.x0);
+      span_hi_[static_cast<std::size_t>(y)] = std::max(span_hi_[static_cast<std::size_t>(y)], run.x1);
+      runs_.push_back(run);
+    }
+  }
+  std::size_t current = segments;
+  Segment segment = segment_at(0);
+  for (const RowRun& run : runs_) {
+    if (run.segment != current) segment = segment_at(current = run.segment);
+    std::uint8_t* row = coverage_.data() + static_cast<std::size_t>(run.y) * static_cast<std::size_t>(cols);
+    const auto rim = [&](int from, int to) {
+      for (int x = from; x <= to; ++x) {
+        if (row[x] == 255) continue;  // nothing can add to full coverage
+        const double a = std::clamp(outer - segment.distance(x, run.y), 0.0, 1.0);
+        row[x] = std::max(row[x], static_cast<std::uint8_t>(255.0 * a + 0.5));
       }
-      span_lo_[static_cast<std::size_t>(y)] = std::min(span_lo_[static_cast<std::size_t>(y)], x0);
-      span_hi_[static_cast<std::size_t>(y)] = std::max(span_hi_[static_cast<std::size_t>(y)], x1);
+    };
+    if (run.f0 <= run.f1) {
+      rim(run.x0, run.f0 - 1);
+      rim(run.f1 + 1, run.x1);
+    } else {
+      rim(run.x0, run.x1);
     }
   }
 }

@@ -28,6 +28,12 @@ class StrokePainter {
   std::vector<std::uint8_t> coverage_;  // rows × cols of the last target, all 0 between calls
   std::vector<int> span_lo_;            // per row: first column with coverage (cols when none)
   std::vector<int> span_hi_;            // per row: last column with coverage (-1 when none)
+  // One row of one segment's capsule: columns [x0, x1] covered at all, [f0, f1] fully (none when f0 > f1).
+  struct RowRun {
+    std::size_t segment;
+    int y, x0, x1, f0, f1;
+  };
+  std::vector<RowRun> runs_;  // the last `cover`'s rows, in segment order
 };
 
 }  // namespace freeplay::sim
