@@ -4,7 +4,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <limits>
-#include <queue>
+#include <algorithm>
+#include <functional>
 
 #include <fmt/format.h>
 
@@ -24,6 +25,22 @@ struct OpenEntry {
   std::size_t node;
   bool operator>(const OpenEntry& other) const {
     return f != other.f ? f > other.f : order > other.order;
+  }
+};
+
+// A search's per-cell arrays, kept between searches on one thread.
+struct SearchWorkspace {
+  std::vector<double> g;
+  std::vector<std::size_t> parent;
+  std::vector<std::uint8_t> closed;
+  std::vector<double> step_cost;
+  std::vector<OpenEntry> open;
+  void reset(std::size_t count) {
+    g.assign(count, std::numeric_limits<double>::infinity());
+    parent.assign(count, std::numeric_limits<std::size_t>::max());
+    closed.assign(count, 0);
+    step_cost.assign(count, std::numeric_limits<double>::quiet_NaN());
+    open.clear();
   }
 };
 
@@ -51,35 +68,58 @@ GridSearchResult astar_search(const OccupancyGrid& grid, const Cell& start, cons
     throw InputError(fmt::format("start or goal cell lies more than {} cells outside the map", margin),
                      "start/goal", "points within the screen plus the outside margin");
   }
+  // The searched area with a one-cell ring of closed cells around it, so that a neighbour needs no bounds check.
+  const int stride = width + 2;
+  const std::size_t count = static_cast<std::size_t>(stride) * static_cast<std::size_t>(height + 2);
   const auto node_of = [&](const Cell& c) {
-    return static_cast<std::size_t>(c.row + margin) * static_cast<std::size_t>(width) +
-           static_cast<std::size_t>(c.col + margin);
+    return static_cast<std::size_t>(c.row + margin + 1) * static_cast<std::size_t>(stride) +
+           static_cast<std::size_t>(c.col + margin + 1);
   };
   const auto cell_of_node = [&](std::size_t node) {
-    return Cell{static_cast<int>(node % static_cast<std::size_t>(width)) - margin,
-                static_cast<int>(node / static_cast<std::size_t>(width)) - margin};
+    return Cell{static_cast<int>(node % static_cast<std::size_t>(stride)) - margin - 1,
+                static_cast<int>(node / static_cast<std::size_t>(stride)) - margin - 1};
   };
-
-  const std::size_t count = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
-  constexpr double kInf = std::numeric_limits<double>::infinity();
   constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
-  std::vector<double> g(count, kInf);
-  std::vector<std::size_t> parent(count, kNone);
-  std::vector<bool> closed(count, false);
-  std::priority_queue<OpenEntry, std::vector<OpenEntry>, std::greater<>> open;
+  // One workspace per thread, reused by every search on it (no allocation after the first).
+  thread_local SearchWorkspace work;
+  work.reset(count);
+  for (int col = 0; col < stride; ++col) {
+    work.closed[static_cast<std::size_t>(col)] = 1;
+    work.closed[count - 1 - static_cast<std::size_t>(col)] = 1;
+  }
+  for (int row = 0; row < height + 2; ++row) {
+    work.closed[static_cast<std::size_t>(row) * static_cast<std::size_t>(stride)] = 1;
+    work.closed[static_cast<std::size_t>(row) * static_cast<std::size_t>(stride) + static_cast<std::size_t>(stride - 1)] = 1;
+  }
+  std::vector<double>& g = work.g;
+  std::vector<std::size_t>& parent = work.parent;
+  std::vector<std::uint8_t>& closed = work.closed;
+  std::vector<double>& step_cost = work.step_cost;  // the entered cell's cost, computed on first use
+  // The open list is a binary heap kept by push_heap/pop_heap, as std::priority_queue keeps it.
+  std::vector<OpenEntry>& open = work.open;
+  const auto push = [&open](const OpenEntry& entry) {
+    open.push_back(entry);
+    std::push_heap(open.begin(), open.end(), std::greater<>{});
+  };
 
   GridSearchResult result;
   std::uint64_t order = 0;
   const std::size_t start_node = node_of(start);
   const std::size_t goal_node = node_of(goal);
   g[start_node] = 0.0;
-  open.push({heuristic_cells(heuristic, goal.col - start.col, goal.row - start.row), order++, start_node});
+  push({heuristic_cells(heuristic, goal.col - start.col, goal.row - start.row), order++, start_node});
+  const std::array<std::ptrdiff_t, 8> offsets = [&] {
+    std::array<std::ptrdiff_t, 8> out{};
+    for (std::size_t i = 0; i < kNeighbours.size(); ++i) out[i] = kNeighbours[i][1] * stride + kNeighbours[i][0];
+    return out;
+  }();
 
   while (!open.empty()) {
-    const OpenEntry top = open.top();
-    open.pop();
-    if (closed[top.node]) continue;
-    closed[top.node] = true;
+    std::pop_heap(open.begin(), open.end(), std::greater<>{});
+    const OpenEntry top = open.back();
+    open.pop_back();
+    if (closed[top.node] != 0) continue;
+    closed[top.node] = 1;
     ++result.expanded;
     if (top.node == goal_node) break;
     if (result.expanded > max_expansions) {
@@ -87,21 +127,22 @@ GridSearchResult astar_search(const OccupancyGrid& grid, const Cell& start, cons
       return result;
     }
     const Cell here = cell_of_node(top.node);
-    for (const auto& [dc, dr] : kNeighbours) {
-      const Cell next{here.col + dc, here.row + dr};
-      if (!inside(next)) continue;
-      const std::size_t next_node = node_of(next);
-      if (closed[next_node]) continue;
-      const double candidate = g[top.node] + grid.step_cost(next);
+    for (std::size_t i = 0; i < offsets.size(); ++i) {
+      const std::size_t next_node = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(top.node) + offsets[i]);
+      if (closed[next_node] != 0) continue;
+      const Cell next{here.col + kNeighbours[i][0], here.row + kNeighbours[i][1]};
+      double& cost = step_cost[next_node];
+      if (std::isnan(cost)) cost = grid.step_cost(next);
+      const double candidate = g[top.node] + cost;
       if (candidate < g[next_node]) {
         g[next_node] = candidate;
         parent[next_node] = top.node;
-        open.push({candidate + heuristic_cells(heuristic, goal.col - next.col, goal.row - next.row), order++,
+        push({candidate + heuristic_cells(heuristic, goal.col - next.col, goal.row - next.row), order++,
                    next_node});
       }
     }
   }
-  if (!closed[goal_node]) return result;
+  if (closed[goal_node] == 0) return result;
 
   result.found = true;
   result.cost = g[goal_node];
