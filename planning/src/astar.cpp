@@ -28,18 +28,27 @@ struct OpenEntry {
   }
 };
 
-// A search's per-cell arrays, kept between searches on one thread.
+// What a search knows of one cell; valid only while `search` is the current search's number.
+struct NodeState {
+  double g;          // cost of the best path found to the cell
+  double step_cost;  // the cost of entering the cell (computed on first touch)
+  std::size_t parent;
+  std::uint32_t search;
+  bool closed;
+};
+
+// A search's per-cell records and open list, kept between searches on one thread: a new search only bumps the
+// search number (a record from an earlier search reads as untouched), so nothing is cleared or allocated.
 struct SearchWorkspace {
-  std::vector<double> g;
-  std::vector<std::size_t> parent;
-  std::vector<std::uint8_t> closed;
-  std::vector<double> step_cost;
+  std::vector<NodeState> nodes;
   std::vector<OpenEntry> open;
-  void reset(std::size_t count) {
-    g.assign(count, std::numeric_limits<double>::infinity());
-    parent.assign(count, std::numeric_limits<std::size_t>::max());
-    closed.assign(count, 0);
-    step_cost.assign(count, std::numeric_limits<double>::quiet_NaN());
+  std::uint32_t search = 0;
+  void begin(std::size_t count) {
+    if (nodes.size() != count || search == std::numeric_limits<std::uint32_t>::max()) {
+      nodes.assign(count, NodeState{0.0, 0.0, 0, 0, false});
+      search = 0;
+    }
+    ++search;
     open.clear();
   }
 };
@@ -82,19 +91,24 @@ GridSearchResult astar_search(const OccupancyGrid& grid, const Cell& start, cons
   constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
   // One workspace per thread, reused by every search on it (no allocation after the first).
   thread_local SearchWorkspace work;
-  work.reset(count);
+  work.begin(count);
+  const auto touch = [&](std::size_t node) -> NodeState& {
+    NodeState& state = work.nodes[node];
+    if (state.search != work.search) {
+      state = NodeState{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN(), kNone,
+                        work.search, false};
+    }
+    return state;
+  };
   for (int col = 0; col < stride; ++col) {
-    work.closed[static_cast<std::size_t>(col)] = 1;
-    work.closed[count - 1 - static_cast<std::size_t>(col)] = 1;
+    touch(static_cast<std::size_t>(col)).closed = true;
+    touch(count - 1 - static_cast<std::size_t>(col)).closed = true;
   }
   for (int row = 0; row < height + 2; ++row) {
-    work.closed[static_cast<std::size_t>(row) * static_cast<std::size_t>(stride)] = 1;
-    work.closed[static_cast<std::size_t>(row) * static_cast<std::size_t>(stride) + static_cast<std::size_t>(stride - 1)] = 1;
+    touch(static_cast<std::size_t>(row) * static_cast<std::size_t>(stride)).closed = true;
+    touch(static_cast<std::size_t>(row) * static_cast<std::size_t>(stride) + static_cast<std::size_t>(stride - 1))
+        .closed = true;
   }
-  std::vector<double>& g = work.g;
-  std::vector<std::size_t>& parent = work.parent;
-  std::vector<std::uint8_t>& closed = work.closed;
-  std::vector<double>& step_cost = work.step_cost;  // the entered cell's cost, computed on first use
   // The open list is a binary heap kept by push_heap/pop_heap, as std::priority_queue keeps it.
   std::vector<OpenEntry>& open = work.open;
   const auto push = [&open](const OpenEntry& entry) {
@@ -106,7 +120,7 @@ GridSearchResult astar_search(const OccupancyGrid& grid, const Cell& start, cons
   std::uint64_t order = 0;
   const std::size_t start_node = node_of(start);
   const std::size_t goal_node = node_of(goal);
-  g[start_node] = 0.0;
+  touch(start_node).g = 0.0;
   push({heuristic_cells(heuristic, goal.col - start.col, goal.row - start.row), order++, start_node});
   const std::array<std::ptrdiff_t, 8> offsets = [&] {
     std::array<std::ptrdiff_t, 8> out{};
@@ -118,35 +132,39 @@ GridSearchResult astar_search(const OccupancyGrid& grid, const Cell& start, cons
     std::pop_heap(open.begin(), open.end(), std::greater<>{});
     const OpenEntry top = open.back();
     open.pop_back();
-    if (closed[top.node] != 0) continue;
-    closed[top.node] = 1;
+    NodeState& here_state = work.nodes[top.node];  // touched when it was pushed
+    if (here_state.closed) continue;
+    here_state.closed = true;
     ++result.expanded;
     if (top.node == goal_node) break;
     if (result.expanded > max_expansions) {
       result.timed_out = true;
       return result;
     }
+    const double here_g = here_state.g;
     const Cell here = cell_of_node(top.node);
     for (std::size_t i = 0; i < offsets.size(); ++i) {
       const std::size_t next_node = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(top.node) + offsets[i]);
-      if (closed[next_node] != 0) continue;
+      NodeState& next_state = touch(next_node);
+      if (next_state.closed) continue;
       const Cell next{here.col + kNeighbours[i][0], here.row + kNeighbours[i][1]};
-      double& cost = step_cost[next_node];
-      if (std::isnan(cost)) cost = grid.step_cost(next);
-      const double candidate = g[top.node] + cost;
-      if (candidate < g[next_node]) {
-        g[next_node] = candidate;
-        parent[next_node] = top.node;
+      if (std::isnan(next_state.step_cost)) next_state.step_cost = grid.step_cost(next);
+      const double candidate = here_g + next_state.step_cost;
+      if (candidate < next_state.g) {
+        next_state.g = candidate;
+        next_state.parent = top.node;
         push({candidate + heuristic_cells(heuristic, goal.col - next.col, goal.row - next.row), order++,
-                   next_node});
+              next_node});
       }
     }
   }
-  if (closed[goal_node] == 0) return result;
+  if (!touch(goal_node).closed) return result;
 
   result.found = true;
-  result.cost = g[goal_node];
-  for (std::size_t node = goal_node; node != kNone; node = parent[node]) result.cells.push_back(cell_of_node(node));
+  result.cost = work.nodes[goal_node].g;
+  for (std::size_t node = goal_node; node != kNone; node = work.nodes[node].parent) {
+    result.cells.push_back(cell_of_node(node));
+  }
   std::reverse(result.cells.begin(), result.cells.end());
   return result;
 }
