@@ -86,15 +86,19 @@ class ArmChain {
     Eigen::Quaterniond quat = base_quat;
     int hinges = 0;
     for (const int body : bodies_) {
-      pos += quat * Eigen::Map<const Vector3d>(m_->body_pos + 3 * body);
+      // A zero offset rotates to zero, so skipping it leaves every sum unchanged (the NAO's joints sit at their
+      // bodies' origins).
+      const Eigen::Map<const Vector3d> body_pos(m_->body_pos + 3 * body);
+      if (!body_pos.isZero(0.0)) pos += quat * body_pos;
       quat = quat * quat_at(m_->body_quat + 4 * body);
       for (int j = m_->body_jntadr[body]; j < m_->body_jntadr[body] + m_->body_jntnum[body]; ++j) {
         const Vector3d local_anchor = Eigen::Map<const Vector3d>(m_->jnt_pos + 3 * j);
         const Vector3d local_axis = Eigen::Map<const Vector3d>(m_->jnt_axis + 3 * j);
-        const Vector3d anchor = pos + quat * local_anchor;
+        const bool at_origin = local_anchor.isZero(0.0);
+        const Vector3d anchor = at_origin ? pos : Vector3d(pos + quat * local_anchor);
         const int adr = m_->jnt_qposadr[j];
         quat = quat * Eigen::Quaterniond(Eigen::AngleAxisd(qpos[adr] - m_->qpos0[adr], local_axis));
-        pos = anchor - quat * local_anchor;
+        pos = at_origin ? anchor : Vector3d(anchor - quat * local_anchor);
         anchors_[static_cast<size_t>(hinges)] = anchor;
         axes_[static_cast<size_t>(hinges)] = quat * local_axis;
         ++hinges;
