@@ -19,10 +19,11 @@ namespace {
 constexpr std::array<std::array<int, 2>, 8> kNeighbours = {
     {{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1}, {1, -1}, {-1, 1}, {-1, -1}}};
 
+// 16 bytes: a search pushes at most 8 entries per cell, and the area is checked to keep that within 32 bits.
 struct OpenEntry {
   double f;
-  std::uint64_t order;  // insertion order: a deterministic tie-break
-  std::size_t node;
+  std::uint32_t order;  // insertion order: a deterministic tie-break
+  std::uint32_t node;
   bool operator>(const OpenEntry& other) const {
     return f != other.f ? f > other.f : order > other.order;
   }
@@ -88,6 +89,10 @@ GridSearchResult astar_search(const OccupancyGrid& grid, const Cell& start, cons
     return Cell{static_cast<int>(node % static_cast<std::size_t>(stride)) - margin - 1,
                 static_cast<int>(node / static_cast<std::size_t>(stride)) - margin - 1};
   };
+  if (count >= std::numeric_limits<std::uint32_t>::max() / 9) {
+    throw InputError(fmt::format("an outside margin of {} cells makes the search area too large", margin),
+                     "outside_margin_cells", "a margin that keeps the area under 4.7e8 cells");
+  }
   constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
   // One workspace per thread, reused by every search on it (no allocation after the first).
   thread_local SearchWorkspace work;
@@ -117,11 +122,12 @@ GridSearchResult astar_search(const OccupancyGrid& grid, const Cell& start, cons
   };
 
   GridSearchResult result;
-  std::uint64_t order = 0;
+  std::uint32_t order = 0;
   const std::size_t start_node = node_of(start);
   const std::size_t goal_node = node_of(goal);
   touch(start_node).g = 0.0;
-  push({heuristic_cells(heuristic, goal.col - start.col, goal.row - start.row), order++, start_node});
+  push({heuristic_cells(heuristic, goal.col - start.col, goal.row - start.row), order++,
+        static_cast<std::uint32_t>(start_node)});
   const std::array<std::ptrdiff_t, 8> offsets = [&] {
     std::array<std::ptrdiff_t, 8> out{};
     for (std::size_t i = 0; i < kNeighbours.size(); ++i) out[i] = kNeighbours[i][1] * stride + kNeighbours[i][0];
@@ -154,7 +160,7 @@ GridSearchResult astar_search(const OccupancyGrid& grid, const Cell& start, cons
         next_state.g = candidate;
         next_state.parent = top.node;
         push({candidate + heuristic_cells(heuristic, goal.col - next.col, goal.row - next.row), order++,
-              next_node});
+              static_cast<std::uint32_t>(next_node)});
       }
     }
   }
