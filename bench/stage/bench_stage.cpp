@@ -76,29 +76,25 @@ void BM_KinematicControlTick(benchmark::State& state) {
 }
 BENCHMARK(BM_KinematicControlTick);
 
-// NAO pointing IK (damped least squares on MuJoCo Jacobians) for a moving target.
-void BM_NaoPointAt(benchmark::State& state) {
+// NAO pointing IK (damped least squares on the arm chain) for a target stepping 2 mm along x from `from` to `to`
+// at y, then back to `from`.
+void point_along(benchmark::State& state, double from, double to, double y) {
   Stage stage(model_for(SceneKind::child_robot));
   NaoController nao(stage);
-  double x = 0.15;
+  double x = from;
   for (auto _ : state) {
-    x = x > 0.28 ? 0.15 : x + 0.002;
-    benchmark::DoNotOptimize(nao.point_at({x, -0.03}));
+    x = x > to ? from : x + 0.002;
+    benchmark::DoNotOptimize(nao.point_at({x, y}));
   }
 }
+
+// Targets within reach near the robot's edge.
+void BM_NaoPointAt(benchmark::State& state) { point_along(state, 0.15, 0.28, -0.03); }
 BENCHMARK(BM_NaoPointAt);
 
-// The same for targets out of the arm's reach (far side of the screen): the first solve stalls and a retry from the
-// default pointing pose follows, as for most of the finger poses of a social episode.
-void BM_NaoPointAtOutOfReach(benchmark::State& state) {
-  Stage stage(model_for(SceneKind::child_robot));
-  NaoController nao(stage);
-  double x = 0.45;
-  for (auto _ : state) {
-    x = x > 0.58 ? 0.45 : x + 0.002;
-    benchmark::DoNotOptimize(nao.point_at({x, -0.3}));
-  }
-}
+// Targets beyond the whole arm's length (far side of the screen), as most finger poses of a social episode: one
+// solve from the default pointing pose, stretching the arm towards the target.
+void BM_NaoPointAtOutOfReach(benchmark::State& state) { point_along(state, 0.45, 0.58, -0.3); }
 BENCHMARK(BM_NaoPointAtOutOfReach);
 
 // `fast` preset frames per second for one camera at its native resolution, RGB read back into a cv::Mat.

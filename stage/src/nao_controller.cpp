@@ -329,20 +329,23 @@ GazeResult NaoController::look_at(const Eigen::Vector3d& point) {
   return result;
 }
 
-ArmBasePose NaoController::load_arm(const NaoJointVector& seed) {
+// Copies the stage's state into the IK's scratch data (the Nao at its current targets) and poses the arm's base.
+NaoController::ArmBase NaoController::load_arm() {
   const mjModel* m = stage_.model().mj();
   if (scratch_ == nullptr) scratch_ = mj_makeData(m);
   mju_copy(scratch_->qpos, stage_.data()->qpos, m->nq);
   mju_copy(scratch_->mocap_pos, stage_.data()->mocap_pos, 3 * m->nmocap);
   mju_copy(scratch_->mocap_quat, stage_.data()->mocap_quat, 4 * m->nmocap);
-  for (int i = 0; i < kNaoJointCount; ++i) scratch_->qpos[nao_.qpos[static_cast<size_t>(i)]] = seed[static_cast<size_t>(i)];
+  for (int i = 0; i < kNaoJointCount; ++i) {
+    scratch_->qpos[nao_.qpos[static_cast<size_t>(i)]] = targets_[static_cast<size_t>(i)];
+  }
   if (arm_chain_ == nullptr) {
     arm_chain_ = std::make_shared<ArmChain>(m, nao_);
     if (!arm_chain_->only_hinges()) throw std::logic_error("the NAO's right arm must be a chain of hinge joints");
   }
   // The arm's base does not move with the pointing joints: the torso is the NAO's mocap body (its pose is the
   // mocap pose); any other base is posed once by the full kinematics.
-  ArmBasePose base;
+  ArmBase base;
   if (arm_chain_->base() == nao_.torso_body && m->body_parentid[nao_.torso_body] == 0) {
     base.position = Eigen::Map<const Vector3d>(scratch_->mocap_pos + 3 * nao_.torso_mocap);
     base.orientation = quat_at(scratch_->mocap_quat + 4 * nao_.torso_mocap).normalized();
@@ -354,15 +357,12 @@ ArmBasePose NaoController::load_arm(const NaoJointVector& seed) {
   return base;
 }
 
-bool NaoController::within_arm_length(const Vector3d& target) {
-  const ArmBasePose base = load_arm(targets_);
-  return arm_chain_->may_reach(base.position, base.orientation, target, kReachTolerance, 0.0, kMaxReachHeight);
-}
-
-PointingResult NaoController::solve_pointing(const Vector3d& target, const NaoJointVector& seed, bool retry,
-                                             NaoJointVector* out) {
+PointingResult NaoController::solve_pointing(const ArmBase& base, const Vector3d& target, const NaoJointVector& seed,
+                                             bool retry, NaoJointVector* out) {
   const mjModel* m = stage_.model().mj();
-  const ArmBasePose base = load_arm(seed);
+  // Only the arm moves during a solve, and the seed's other joints are the current targets: the scratch data
+  // loaded by `load_arm` needs just the seed's joints.
+  for (int i = 0; i < kNaoJointCount; ++i) scratch_->qpos[nao_.qpos[static_cast<size_t>(i)]] = seed[static_cast<size_t>(i)];
   const Vector3d& base_pos = base.position;
   const Eigen::Quaterniond& base_quat = base.orientation;
   Eigen::Matrix<double, 3, 5> j;
@@ -428,17 +428,18 @@ PointingResult NaoController::point_at(const Eigen::Vector2d& screen_point) {
   NaoJointVector pointing_seed = targets_;
   for (size_t c = 0; c < kRightArm.size(); ++c) pointing_seed[static_cast<size_t>(kRightArm[c])] = kPointingSeed[c];
   NaoJointVector solution{};
-  if (!within_arm_length(target)) {
-    // No start reaches a target beyond the whole arm: only the stretch matters, and the default pose's start
-    // stretches it best (the solve from the current pose would be run and then beaten by this one).
-    const PointingResult stretched = solve_pointing(target, pointing_seed, true, &solution);
+  const ArmBase base = load_arm();
+  if (!arm_chain_->may_reach(base.position, base.orientation, target, kReachTolerance, 0.0, kMaxReachHeight)) {
+    // No start reaches a target beyond the whole arm, so only the stretch matters: solved once, from the default
+    // pose (the start that stretched it best in most such poses when both ran), it does not depend on the last pose.
+    const PointingResult stretched = solve_pointing(base, target, pointing_seed, true, &solution);
     set_joint_targets(solution);
     return stretched;
   }
-  PointingResult best = solve_pointing(target, targets_, false, &solution);
+  PointingResult best = solve_pointing(base, target, targets_, false, &solution);
   if (!best.reachable) {
     NaoJointVector second{};
-    const PointingResult retry = solve_pointing(target, pointing_seed, true, &second);
+    const PointingResult retry = solve_pointing(base, target, pointing_seed, true, &second);
     if (retry.error_m < best.error_m) {
       best = retry;
       solution = second;

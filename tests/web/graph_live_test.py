@@ -11,12 +11,11 @@ import json
 import os
 import subprocess
 import sys
-import tempfile
 import time
 import urllib.request
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from sparc_live_test import free_port, start_rosmaster, until  # noqa: E402  (the same harness)
+from sparc_live_test import ros_environment, start_rosmaster, until  # noqa: E402  (the same harness)
 
 FREEPLAY, SCENARIO = sys.argv[1], sys.argv[2]
 
@@ -30,11 +29,7 @@ def main():
     except ImportError as e:
         print(f"SKIPPED: rospy or the ROS messages missing ({e}); scripts/setup.sh installs them")
         return 77
-    home = tempfile.mkdtemp(prefix="freeplay-web-graph-")
-    port = free_port()
-    uri = f"http://127.0.0.1:{port}/"
-    os.environ.update({"ROS_MASTER_URI": uri, "ROS_IP": "127.0.0.1", "ROS_HOME": home, "ROS_LOG_DIR": home})
-    os.environ.pop("ROS_HOSTNAME", None)
+    home, port = ros_environment("freeplay-web-graph-")
     procs = []
     failures = []
 

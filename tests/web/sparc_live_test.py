@@ -36,6 +36,17 @@ def until(what, predicate, timeout=60):
         time.sleep(0.1)
 
 
+def ros_environment(prefix):
+    """Points this process (and its children) at a master on a free loopback port, logs in a new temporary folder;
+    returns (that folder, the port)."""
+    home = tempfile.mkdtemp(prefix=prefix)
+    port = free_port()
+    os.environ.update({"ROS_MASTER_URI": f"http://127.0.0.1:{port}/", "ROS_IP": "127.0.0.1", "ROS_HOME": home,
+                       "ROS_LOG_DIR": home})
+    os.environ.pop("ROS_HOSTNAME", None)
+    return home, port
+
+
 def start_rosmaster(port, procs):
     """Starts rosmaster on `port` (appended to `procs`) and waits for it; False (said) when it cannot start."""
     try:
@@ -55,11 +66,7 @@ def main():
     except ImportError as e:
         print(f"SKIPPED: rospy or geometry_msgs missing ({e}); scripts/setup.sh installs them")
         return 77
-    home = tempfile.mkdtemp(prefix="freeplay-web-ros-")
-    port = free_port()
-    uri = f"http://127.0.0.1:{port}/"
-    os.environ.update({"ROS_MASTER_URI": uri, "ROS_IP": "127.0.0.1", "ROS_HOME": home, "ROS_LOG_DIR": home})
-    os.environ.pop("ROS_HOSTNAME", None)
+    home, port = ros_environment("freeplay-web-ros-")
     procs = []
     try:
         if not start_rosmaster(port, procs):

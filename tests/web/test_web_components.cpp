@@ -8,10 +8,10 @@
 #include <fstream>
 #include <thread>
 
-#include "freeplay/core/yaml_schema.hpp"
 #include "freeplay/recording/ros_messages.hpp"
 #include "freeplay/web/web_session.hpp"
 #include "http_client.hpp"
+#include "session_support.hpp"
 
 using namespace freeplay;
 using namespace freeplay::web;
@@ -56,16 +56,10 @@ std::vector<nlohmann::json> read_events(const std::filesystem::path& file) {
 }  // namespace
 
 TEST(WebComponents, ProtocolButtonsMoveTheServedEpisodesStages) {
-  const auto scenario = runner::scenario_from_document(parse_yaml(
-      "name: t\ncondition: child-child\nprotocol: {greeting_s: 600, tutorial_s: 600, freeplay_cap_s: 600, debriefing_s: 1}\n",
-      "test.yaml"));
-  const auto out = std::filesystem::temp_directory_path() / "freeplay-web-protocol";
-  std::filesystem::remove_all(out);
-  WebSessionOptions options;
-  options.server.port = 0;
-  options.rate = 10.0;
-  options.out = out;
-  options.linger = false;
+  const auto scenario = test_session::scenario(
+      "name: t\ncondition: child-child\nprotocol: {greeting_s: 600, tutorial_s: 600, freeplay_cap_s: 600, debriefing_s: 1}\n");
+  auto options = test_session::options("freeplay-web-protocol", 10.0);
+  const auto out = options.out;
   std::set<std::string> sent;
   nlohmann::json coded;  // a child's coded state as the page saw it in free play
   std::mutex mutex;
@@ -107,17 +101,11 @@ TEST(WebComponents, ProtocolButtonsMoveTheServedEpisodesStages) {
 }
 
 TEST(WebComponents, WizardSpeechIsTheRobotsAndTheRecorderAndRobotSideSwitch) {
-  const auto scenario = runner::scenario_from_document(parse_yaml(
+  const auto scenario = test_session::scenario(
       "name: t\ncondition: child-robot\nrobot: {policy: asocial}\n"
-      "protocol: {greeting_s: 1, tutorial_s: 1, freeplay_cap_s: 9, debriefing_s: 1}\n",
-      "test.yaml"));
-  const auto out = std::filesystem::temp_directory_path() / "freeplay-web-components";
-  std::filesystem::remove_all(out);
-  WebSessionOptions options;
-  options.server.port = 0;
-  options.rate = 5.0;
-  options.out = out;
-  options.linger = false;
+      "protocol: {greeting_s: 1, tutorial_s: 1, freeplay_cap_s: 9, debriefing_s: 1}\n");
+  auto options = test_session::options("freeplay-web-components", 5.0);
+  const auto out = options.out;
   std::set<std::string> done;
   std::vector<nlohmann::json> components;
   std::mutex mutex;

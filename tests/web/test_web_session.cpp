@@ -3,9 +3,9 @@
 
 #include <fstream>
 
-#include "freeplay/core/yaml_schema.hpp"
 #include "freeplay/web/web_session.hpp"
 #include "http_client.hpp"
+#include "session_support.hpp"
 
 using namespace freeplay;
 using namespace freeplay::web;
@@ -13,16 +13,10 @@ using namespace freeplay::web;
 using freeplay::web::test_http::post;
 
 TEST(WebSession, AChildChildSessionTakesExperimentCommandsAndRefusesRobotOnes) {
-  const auto scenario = runner::scenario_from_document(parse_yaml(
-      "name: t\ncondition: child-child\nprotocol: {greeting_s: 1, tutorial_s: 1, freeplay_cap_s: 5, debriefing_s: 1}\n",
-      "test.yaml"));
-  const auto out = std::filesystem::temp_directory_path() / "freeplay-web-session";
-  std::filesystem::remove_all(out);
-  WebSessionOptions options;
-  options.server.port = 0;
-  options.rate = 50.0;
-  options.out = out;
-  options.linger = false;
+  const auto scenario = test_session::scenario(
+      "name: t\ncondition: child-child\nprotocol: {greeting_s: 1, tutorial_s: 1, freeplay_cap_s: 5, debriefing_s: 1}\n");
+  auto options = test_session::options("freeplay-web-session", 50.0);
+  const auto out = options.out;
   std::vector<std::pair<int, std::string>> answers;
   options.on_listening = [&](const std::string& url) {
     const int port = std::stoi(url.substr(url.rfind(':') + 1));

@@ -1,10 +1,10 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "freeplay/core/yaml_schema.hpp"
 #include "freeplay/runner/episode.hpp"
 #include "freeplay/sim/sandtray.hpp"
 #include "freeplay/web/wizard_robot.hpp"
+#include "session_support.hpp"
 
 using namespace freeplay;
 using namespace freeplay::web;
@@ -14,7 +14,7 @@ namespace {
 runner::Scenario scenario(double cap_s) {
   const std::string text = fmt::format(
       "name: t\ncondition: child-robot\nrobot: {{policy: asocial}}\nprotocol: {{freeplay_cap_s: {}}}\n", cap_s);
-  return runner::scenario_from_document(parse_yaml(text, "test.yaml"));
+  return test_session::scenario(text);
 }
 
 Command command(const std::string& body) {

@@ -28,12 +28,6 @@ struct PointingResult {
   Eigen::Vector3d fingertip = Eigen::Vector3d::Zero();  ///< fingertip position the joints produce (sandtray)
 };
 
-/// Where the right arm's chain hangs from (its base body's pose, sandtray frame).
-struct ArmBasePose {
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();            ///< metres
-  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  ///< unit quaternion
-};
-
 /// A target on the screen at a given time (for synchronised drags).
 struct TimedScreenPoint {
   double time = 0;                                 ///< seconds
@@ -94,10 +88,14 @@ class NaoController {
  private:
   void write_targets();
   void place_base(const NaoJointVector& posture);
-  ArmBasePose load_arm(const NaoJointVector& seed);
-  bool within_arm_length(const Eigen::Vector3d& target);
-  PointingResult solve_pointing(const Eigen::Vector3d& target, const NaoJointVector& seed, bool retry,
-                                NaoJointVector* out);
+  // Where the right arm's chain hangs from: its base body's pose (sandtray frame).
+  struct ArmBase {
+    Eigen::Vector3d position = Eigen::Vector3d::Zero();
+    Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+  };
+  ArmBase load_arm();
+  PointingResult solve_pointing(const ArmBase& base, const Eigen::Vector3d& target, const NaoJointVector& seed,
+                                bool retry, NaoJointVector* out);
 
   Stage& stage_;
   const NaoIndex& nao_;
