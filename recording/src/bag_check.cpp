@@ -3,11 +3,15 @@
 #include <fmt/format.h>
 
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "freeplay/core/error.hpp"
 
@@ -16,22 +20,24 @@ namespace freeplay::recording {
 namespace {
 
 constexpr std::uint64_t kMaxChunkBytes = 512ULL << 20;
-constexpr std::size_t kMagicBytes = 13;  // "#ROSBAG V2.0\n"
-constexpr char kOpMessage = 0x02, kOpBagHeader = 0x03, kOpIndexData = 0x04, kOpChunk = 0x05, kOpChunkInfo = 0x06;
+constexpr char kOpMessage = 0x02, kOpBagHeader = 0x03, kOpIndexData = 0x04, kOpChunk = 0x05, kOpChunkInfo = 0x06,
+               kOpConnection = 0x07;
 
-/// The fields of a record header (`length name=value` pairs); empty on a malformed header.
-std::map<std::string, std::string> header_fields(const std::string& header) {
+/// The fields of a record header (`length name=value` pairs that fill it exactly); nullopt when malformed. ROS's
+/// Header::parse checks neither that a field fits nor that a length fits, and reads past its buffer.
+std::optional<std::map<std::string, std::string>> header_fields(const std::string& header) {
   std::map<std::string, std::string> fields;
   std::size_t at = 0;
-  while (at + 4 <= header.size()) {
+  while (at < header.size()) {
+    if (header.size() - at < 4) return std::nullopt;
     std::uint32_t length = 0;
     std::memcpy(&length, header.data() + at, 4);
     at += 4;
-    if (length > header.size() - at) return {};
+    if (length > header.size() - at) return std::nullopt;
     const auto field = header.substr(at, length);
     at += length;
     const auto eq = field.find('=');
-    if (eq == std::string::npos) return {};
+    if (eq == std::string::npos) return std::nullopt;
     fields[field.substr(0, eq)] = field.substr(eq + 1);
   }
   return fields;
@@ -59,33 +65,51 @@ class Checker {
       : file_(file), in_(file, std::ios::binary), size_(std::filesystem::file_size(file)) {}
 
   void run() {
-    std::string magic(kMagicBytes, '\0');
-    if (!in_.read(magic.data(), kMagicBytes) || magic != "#ROSBAG V2.0\n") return;
+    if (!version_2_0()) return;
     std::uint64_t index_pos = 0;
-    bool indexed = true;
-    for (std::uint64_t at = kMagicBytes; at < size_;) {
+    std::map<std::string, std::string> bag_header;
+    for (std::uint64_t at = header_at_; at < size_;) {
       const auto r = record(at, size_);
-      record_starts_.insert(at);
+      ordinal_of_[at] = ops_.size();
       const char op = op_of(r.fields);
-      if (at == kMagicBytes && op == kOpBagHeader) {
+      ops_.push_back(op);
+      if (at == header_at_ && op == kOpBagHeader) {
+        bool indexed = true;
         index_pos = uint_field(r.fields, "index_pos", &indexed);
         if (!indexed || index_pos == 0) return;  // unindexed: rosbag says so and how to reindex
+        bag_header = r.fields;
       } else if (op == kOpChunk) {
         chunk(at, r);
       } else if (op == kOpIndexData) {
         index_data(at, r);
       } else if (op == kOpChunkInfo) {
-        const auto chunk_pos = uint_field(r.fields, "chunk_pos");
-        if (!chunk_starts_.contains(chunk_pos)) fail(at, fmt::format("a chunk info points at byte {}, no chunk", chunk_pos));
+        chunk_info(at, r);
       }
       at = r.end;
     }
-    if (index_pos != 0 && !record_starts_.contains(index_pos)) {
-      fail(kMagicBytes, fmt::format("the index position {} is not the start of a record", index_pos));
+    if (index_pos == 0) return;
+    if (!ordinal_of_.contains(index_pos)) {
+      fail(header_at_, fmt::format("the index position {} is not the start of a record", index_pos));
     }
+    index_section(index_pos, bag_header);
   }
 
  private:
+ private:
+  /// Reads the version line as rosbag does (`#ROS<name> V<major>.<minor>`, up to the first newline, after which the
+  /// records start); true for 2.0. A 1.2 bag fails here (rosbag's 1.2 reader trusts its lengths too, and freeplay
+  /// writes 2.0); anything else is left to rosbag, which refuses it.
+  bool version_2_0() {
+    std::string line;
+    if (!std::getline(in_, line)) return false;
+    header_at_ = line.size() + 1;
+    char name[100] = {};
+    int major = 0, minor = 0;
+    if (std::sscanf(line.c_str(), "#ROS%99s V%d.%d", name, &major, &minor) != 3) return false;
+    if (major == 1 && minor == 2) fail(0, "a ROS bag 1.2 (freeplay reads bags of version 2.0)");
+    return major == 2 && minor == 0 && header_at_ <= size_;
+  }
+
   struct Record {
     std::map<std::string, std::string> fields;
     std::uint64_t data_at = 0;      // first byte of the data
@@ -106,6 +130,13 @@ class Checker {
     return value;
   }
 
+  /// The fields of the header stored at `at`; fails when they do not fill it exactly.
+  std::map<std::string, std::string> parsed_header(std::uint64_t at, const std::string& header) const {
+    auto fields = header_fields(header);
+    if (!fields) fail(at, fmt::format("a malformed header: its fields do not fill its {} bytes", header.size()));
+    return std::move(*fields);
+  }
+
   /// The record at `at`, which must end by `end`.
   Record record(std::uint64_t at, std::uint64_t end) {
     if (end - at < 4) fail(at, "the record ends inside a length");
@@ -114,13 +145,18 @@ class Checker {
     std::string header(header_length, '\0');
     if (!in_.read(header.data(), static_cast<std::streamsize>(header_length))) fail(at, "unreadable header");
     Record r;
-    r.fields = header_fields(header);
+    r.fields = parsed_header(at, header);
     const auto length_at = at + 4 + header_length;
     if (end - length_at < 4) fail(length_at, "the record ends inside a length");
     r.data_length = read_u32(length_at);
     r.data_at = length_at + 4;
     if (r.data_length > end - r.data_at) fail(length_at, fmt::format("data of {} bytes run past its end", r.data_length));
     r.end = r.data_at + r.data_length;
+    if (op_of(r.fields) == kOpConnection) {  // a connection's data is the connection header, parsed the same way
+      std::string data(r.data_length, '\0');
+      if (!in_.read(data.data(), static_cast<std::streamsize>(r.data_length))) fail(r.data_at, "unreadable connection header");
+      parsed_header(r.data_at, data);
+    }
     return r;
   }
 
@@ -149,10 +185,52 @@ class Checker {
     }
   }
 
+  /// A chunk-info record: it must point at a chunk and list its connections within its data.
+  void chunk_info(std::uint64_t at, const Record& r) {
+    const auto chunk_pos = uint_field(r.fields, "chunk_pos");
+    if (!chunk_starts_.contains(chunk_pos)) fail(at, fmt::format("a chunk info points at byte {}, no chunk", chunk_pos));
+    const auto count = uint_field(r.fields, "count");
+    if (count * 8 > r.data_length) fail(at, fmt::format("a chunk info of {} connections holds {} bytes", count, r.data_length));
+    std::set<std::uint64_t> connections;
+    for (std::uint64_t i = 0; i < count; ++i) connections.insert(read_u32(r.data_at + i * 8));
+    chunk_connections_.emplace_back(chunk_pos, connections.size());
+  }
+
+  /// What rosbag reads when it opens the bag: from the index position, `conn_count` connection records then
+  /// `chunk_count` chunk-info records; after each chunk, one index-data record per connection in its chunk info.
+  /// rosbag reads as many records as these counts say, past the file's end if need be.
+  void index_section(std::uint64_t index_pos, const std::map<std::string, std::string>& bag_header) {
+    bool has_counts = true, has_chunks = true;
+    const auto connections = uint_field(bag_header, "conn_count", &has_counts);
+    const auto chunks = uint_field(bag_header, "chunk_count", &has_chunks);
+    if (!has_counts || !has_chunks) return;  // rosbag names the missing field
+    const auto first = ordinal_of_.at(index_pos);
+    const auto expect = [&](std::size_t ordinal, char op, std::uint64_t at, const std::string& what) {
+      if (ordinal >= ops_.size() || ops_[ordinal] != op) fail(at, what);
+    };
+    for (std::uint64_t i = 0; i < connections; ++i) {
+      expect(first + i, kOpConnection, header_at_,
+             fmt::format("the bag header counts {} connection records at its index, fewer are there", connections));
+    }
+    for (std::uint64_t i = 0; i < chunks; ++i) {
+      expect(first + connections + i, kOpChunkInfo, header_at_,
+             fmt::format("the bag header counts {} chunk-info records at its index, fewer are there", chunks));
+    }
+    for (const auto& [chunk_pos, count] : chunk_connections_) {
+      for (std::size_t i = 1; i <= count; ++i) {
+        expect(ordinal_of_.at(chunk_pos) + i, kOpIndexData, chunk_pos,
+               fmt::format("the chunk's info lists {} connections, fewer index records follow the chunk", count));
+      }
+    }
+  }
+
   std::filesystem::path file_;
   std::ifstream in_;
   std::uint64_t size_;
-  std::set<std::uint64_t> record_starts_;    // top-level records (a few thousand in a long session)
+  std::uint64_t header_at_ = 0;  // the bag header record, after the version line
+  std::map<std::uint64_t, std::size_t> ordinal_of_;  // top-level records' starts (a few thousand in a long session)
+  std::vector<char> ops_;                            // top-level records' ops, in file order
+  std::vector<std::pair<std::uint64_t, std::size_t>> chunk_connections_;  // chunk-info: its chunk, its connections
   std::set<std::uint64_t> chunk_starts_;
   std::set<std::uint64_t> chunk_messages_;   // message records of the last chunk (offsets inside its data)
   std::uint64_t chunk_size_ = 0;

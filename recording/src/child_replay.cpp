@@ -63,13 +63,13 @@ RecordedChildren read_recorded_children(const std::filesystem::path& session) {
   for (const auto& m : view) try {
     const auto topic = m.getTopic();
     if (topic == topics::kScenario) {
-      out.scenario_yaml = std_string(m.instantiate<msg::String>()->data);
+      out.scenario_yaml = std_string(read_message<msg::String>(m)->data);
     } else if (topic == topics::kEpisode) {
-      const auto json = nlohmann::json::parse(std_string(m.instantiate<msg::String>()->data));
+      const auto json = nlohmann::json::parse(std_string(read_message<msg::String>(m)->data));
       out.episode_id = json.value("id", "");
       out.seed = json.value("seed", std::uint64_t{0});
     } else if (topic == topics::kEvents) {
-      const auto json = nlohmann::json::parse(std_string(m.instantiate<msg::String>()->data));
+      const auto json = nlohmann::json::parse(std_string(read_message<msg::String>(m)->data));
       Event e{json.at("t").get<double>(), json.at("source").get<std::string>(), json.at("type").get<std::string>(),
               json.value("data", nlohmann::json())};
       if (e.source == "protocol" && e.type == "stage" && e.data.value("stage", "") == "freeplay") freeplay_start = e.t;
@@ -79,7 +79,7 @@ RecordedChildren read_recorded_children(const std::filesystem::path& session) {
       }
       if (e.source.rfind("child.", 0) == 0) child_events.push_back(std::move(e));
     } else if (topic == topics::kTf) {
-      const auto tf = m.instantiate<msg::TFMessage>();  // keeps the message alive
+      const auto tf = read_message<msg::TFMessage>(m);  // keeps the message alive
       for (const auto& x : tf->transforms) {
         const auto child = std_string(x.child_frame_id);
         const long stamp = publication_tick(sandtray_time(x.header.stamp));

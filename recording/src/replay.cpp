@@ -141,7 +141,7 @@ void read_messages(Bag& bag, SessionRecording& out) {
     first = false;
     out.end_s = std::max(out.end_s, t);
     if (topic == topics::kEvents) {
-      const auto text = m.instantiate<msg::String>();
+      const auto text = read_message<msg::String>(m);
       const auto json = nlohmann::json::parse(std_string(text->data));
       RecordedEvent e;
       e.tick = json.at("tick").get<double>();
@@ -151,7 +151,7 @@ void read_messages(Bag& bag, SessionRecording& out) {
       e.event.data = json.value("data", nlohmann::json());
       out.events.push_back(std::move(e));
     } else if (topic == topics::kTf) {
-      const auto tf = m.instantiate<msg::TFMessage>();
+      const auto tf = read_message<msg::TFMessage>(m);
       for (const auto& x : tf->transforms) {
         const auto child = std_string(x.child_frame_id);
         if (child.rfind("touch", 0) == 0 || child.find('_') != std::string::npos) continue;
@@ -159,7 +159,7 @@ void read_messages(Bag& bag, SessionRecording& out) {
         out.item_positions[publication_tick(sandtray_time(x.header.stamp))][child] = Vec2(x.transform.translation.x, x.transform.translation.y);
       }
     } else if (topic == topics::kZones) {
-      const auto markers = m.instantiate<msg::MarkerArray>();
+      const auto markers = read_message<msg::MarkerArray>(m);
       std::vector<RecordedZone> zones;
       for (const auto& marker : markers->markers) {
         if (marker.action != msg::Marker::ADD) continue;
@@ -171,11 +171,11 @@ void read_messages(Bag& bag, SessionRecording& out) {
       }
       out.zones.emplace_back(tick_time(publication_tick(t)), std::move(zones));
     } else if (topic == topics::kAnnotations) {
-      out.annotations_yaml = std_string(m.instantiate<msg::String>()->data);
+      out.annotations_yaml = std_string(read_message<msg::String>(m)->data);
     } else if (topic == topics::kInteractionEvents) {
-      out.interaction_events.push_back(std_string(m.instantiate<msg::String>()->data));
+      out.interaction_events.push_back(std_string(read_message<msg::String>(m)->data));
     } else if (topic == topics::kBackground) {
-      const auto image = m.instantiate<msg::CompressedImage>();
+      const auto image = read_message<msg::CompressedImage>(m);
       out.backgrounds.emplace_back(tick_time(publication_tick(t)), std::vector<std::uint8_t>(image->data.begin(), image->data.end()));
     }
   }

@@ -811,6 +811,118 @@ TEST(Replay, ARecordLengthPastTheEndOfTheFileIsRefusedBeforeRosbagReadsIt) {
   EXPECT_NE(std::string(e.what()).find("corrupt bag record at byte 13"), std::string::npos) << e.what();
 }
 
+/// Overwrites the 4 bytes before the first occurrence of `marker` in `file` (a stored container's length) with `length`.
+void patch_length_before(const std::filesystem::path& file, const std::string& marker, std::uint32_t length) {
+  std::fstream f(file, std::ios::binary | std::ios::in | std::ios::out);
+  const std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  const auto at = bytes.find(marker);
+  ASSERT_NE(at, std::string::npos);
+  f.seekp(static_cast<std::streamoff>(at) - 4);
+  f.write(reinterpret_cast<const char*>(&length), 4);
+}
+
+TEST(Replay, AHeaderFieldLongerThanItsHeaderIsRefusedBeforeRosbagReadsIt) {
+  // ROS's Header::parse trusts a field's length and copies past its buffer (found by fuzz_bag under ASan).
+  const auto file = bag_with_event_text("bad-field", R"({"tick": 1.0, "t": 1.0, "source": "x", "type": "y"})");
+  {
+    std::fstream f(file, std::ios::binary | std::ios::in | std::ios::out);
+    f.seekp(17);  // the bag header's first field length, after the magic and the header's own length
+    const std::uint32_t past_the_header = 4000;
+    f.write(reinterpret_cast<const char*>(&past_the_header), 4);
+  }
+  const auto e = replay_error(file);
+  EXPECT_EQ(e.where().file, file.string()) << e.what();
+  EXPECT_NE(std::string(e.what()).find("corrupt bag record at byte 13: a malformed header"), std::string::npos) << e.what();
+}
+
+TEST(Replay, MoreConnectionsThanTheIndexHoldsAreRefusedBeforeRosbagReadsPastTheFile) {
+  // rosbag reads `conn_count` connection records from the index position, past the file's end if it claims more
+  // (found by fuzz_bag: a realloc of a garbage length, then rosbag's assert).
+  const auto file = bag_with_event_text("bad-conn-count", R"({"tick": 1.0, "t": 1.0, "source": "x", "type": "y"})");
+  {
+    std::fstream f(file, std::ios::binary | std::ios::in | std::ios::out);
+    const std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    const auto field = bytes.find("conn_count=");
+    ASSERT_NE(field, std::string::npos);
+    f.seekp(static_cast<std::streamoff>(field + std::string("conn_count=").size()));
+    const std::uint32_t many = 1000;
+    f.write(reinterpret_cast<const char*>(&many), 4);
+  }
+  const auto e = replay_error(file);
+  EXPECT_EQ(e.where().file, file.string()) << e.what();
+  EXPECT_NE(std::string(e.what()).find("counts 1000 connection records at its index, fewer are there"), std::string::npos)
+      << e.what();
+}
+
+TEST(Replay, TheVersionLineIsReadAsRosbagReadsIt) {
+  // rosbag reads the version up to the first newline: records after a longer line are checked where rosbag reads
+  // them (fuzz_bag found "#ROSBAG V2.0#..." skipping the check, then rosbag's assert), and a 1.2 bag is refused.
+  const auto file = bag_with_event_text("bad-version", R"({"tick": 1.0, "t": 1.0, "source": "x", "type": "y"})");
+  {
+    std::fstream f(file, std::ios::binary | std::ios::in | std::ios::out);
+    f.seekp(12);
+    f.put('#');
+  }
+  EXPECT_EQ(replay_error(file).where().file, file.string());
+  {
+    std::fstream f(file, std::ios::binary | std::ios::in | std::ios::out);
+    f.write("#ROSBAG V1.2\n", 13);
+  }
+  const auto e = replay_error(file);
+  EXPECT_NE(std::string(e.what()).find("a ROS bag 1.2 (freeplay reads bags of version 2.0)"), std::string::npos) << e.what();
+}
+
+TEST(Replay, AZoneWithMorePointsThanItsMessageIsRefusedBeforeItIsAllocated) {
+  // The case fuzz_bag found: a Marker's point count of ~1.9e9, which ROS resized to (46 GB) before reading a point.
+  const auto file = fresh_dir("bad-points") / "freeplay.bag";
+  {
+    Bag bag;
+    bag.open(file.string(), rosbag::bagmode::Write);
+    msg::MarkerArray zones;
+    msg::Marker zone;
+    zone.ns = ros_string("sandbox_zone_water");
+    msg::Point p;
+    p.x = 1234.5;  // found in the file below
+    zone.points = {p, p, p};
+    zones.markers.push_back(zone);
+    bag.get().write(std::string(topics::kZones), ros_time(1.0), zones);
+    bag.close();
+  }
+  const double sentinel = 1234.5;
+  patch_length_before(file, std::string(reinterpret_cast<const char*>(&sentinel), sizeof sentinel), 0x73000000U);
+  const auto e = replay_error(file);
+  EXPECT_EQ(e.key(), topics::kZones) << e.what();
+  EXPECT_NE(std::string(e.what()).find("corrupt message"), std::string::npos) << e.what();
+}
+
+TEST(Replay, AMessageOfAnotherTypeOnAKnownTopicNamesBothTypes) {
+  const auto file = fresh_dir("wrong-type") / "freeplay.bag";
+  {
+    Bag bag;
+    bag.open(file.string(), rosbag::bagmode::Write);
+    msg::String text;
+    text.data = ros_string("not zones");
+    bag.get().write(std::string(topics::kZones), ros_time(1.0), text);
+    bag.close();
+  }
+  const auto e = replay_error(file);
+  EXPECT_EQ(e.where().file, file.string()) << e.what();
+  EXPECT_EQ(e.key(), topics::kZones) << e.what();
+  EXPECT_NE(std::string(e.what()).find("std_msgs/String"), std::string::npos) << e.what();
+  EXPECT_NE(std::string(e.what()).find("visualization_msgs/MarkerArray"), std::string::npos) << e.what();
+}
+
+TEST(Replay, MessagesOfEveryLengthAreStillRead) {
+  // The allocation bound is met exactly by a string that is the whole message (its length plus 4 bytes).
+  for (const std::size_t n : {0UL, 1UL, 15UL, 16UL, 29UL, 30UL, 31UL, 200UL}) {
+    const auto file = bag_with_event_text("lengths", std::string(n, 'a'));  // the string is the whole message
+    Bag bag;
+    open_session_bag(file, bag);
+    rosbag::View view(bag.get());
+    for (const auto& m : view) EXPECT_EQ(read_message<msg::String>(m)->data.size(), n);
+  }
+}
+
 TEST(SessionVideos, TheSessionFolderHoldsEachCamerasRawVideo) {
   const auto& r = child_robot();
   const auto video = r.run_dir / "sessions" / "tiny-0000" / "video" / "camera_purple_raw.mkv";

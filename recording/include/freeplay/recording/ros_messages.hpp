@@ -6,12 +6,25 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 
+#include "freeplay/core/error.hpp"
+
 namespace freeplay::recording {
 
-/// std::allocator with the `rebind` member the ROS 1 message headers expect.
+/// While a message is read from a bag (read_message), the number of bytes it holds; 0 otherwise (no limit).
+inline thread_local std::size_t g_message_bytes_being_read = 0;
+
+/// Thrown when a message being read asks for a container longer than the message itself.
+struct CorruptLength : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// std::allocator with the `rebind` member the ROS 1 message headers expect. While a message is read from a bag it
+/// refuses a container longer than the message's bytes: ROS's deserialiser resizes a vector to the stored length
+/// before it reads the elements, so a corrupt length would otherwise ask for up to 2^32 of them.
 template <class T>
 struct RosAllocator : std::allocator<T> {
   using value_type = T;
@@ -19,6 +32,15 @@ struct RosAllocator : std::allocator<T> {
   /// Converting constructor (allocators of every type are interchangeable).
   template <class U>
   RosAllocator(const RosAllocator<U>& /*other*/) noexcept {}
+  /// Storage for `n` values. Every element of a stored container takes at least one of the message's bytes (a
+  /// string of `n` characters, allocated with its terminator, at least four more for its length).
+  T* allocate(std::size_t n) {
+    if (g_message_bytes_being_read != 0 && n > g_message_bytes_being_read) {
+      throw CorruptLength("a container of " + std::to_string(n) + " elements in a message of " +
+                          std::to_string(g_message_bytes_being_read) + " bytes");
+    }
+    return std::allocator<T>::allocate(n);
+  }
   /// The same allocator for another type.
   template <class U>
   struct rebind {
@@ -63,6 +85,30 @@ namespace freeplay::recording {
 
 /// A ROS string from a std::string_view.
 inline msg::RosString ros_string(std::string_view text) { return msg::RosString(text.begin(), text.end()); }
+/// Message `m` of a bag as type `M`, every container's stored length checked against the message's size: a corrupt
+/// length is an InputError naming the topic instead of a multi-gigabyte allocation, and so is a message of another type
+/// (rosbag returns none). rosbag's own errors pass through.
+template <class M>
+boost::shared_ptr<M> read_message(const rosbag::MessageInstance& m) {
+  struct Reading {
+    explicit Reading(std::size_t bytes) { g_message_bytes_being_read = bytes; }
+    ~Reading() { g_message_bytes_being_read = 0; }
+    Reading(const Reading&) = delete;
+    Reading& operator=(const Reading&) = delete;
+  } reading(m.size());
+  boost::shared_ptr<M> message;
+  try {
+    message = m.instantiate<M>();
+  } catch (const CorruptLength& e) {
+    throw InputError(std::string("corrupt message: ") + e.what(), m.getTopic(), "a ROS 1 bag written by `freeplay run --record`");
+  }
+  if (!message) {  // rosbag answers a type or MD5 sum other than M's with no message
+    throw InputError("a message of type " + m.getDataType() + " (MD5 " + m.getMD5Sum() + ")", m.getTopic(),
+                     std::string(ros::message_traits::DataType<M>::value()) + " (MD5 " + ros::message_traits::MD5Sum<M>::value() + ")");
+  }
+  return message;
+}
+
 /// A std::string from a ROS string.
 inline std::string std_string(const msg::RosString& text) { return std::string(text.begin(), text.end()); }
 
