@@ -5,17 +5,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include <rosbag/bag.h>
-
 #include "freeplay/recording/replay.hpp"
 #include "fuzz_support.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const unsigned char* data, std::size_t size) {
-  // Every rosbag::Bag loads its encryptor plugin through pluginlib; the last one to go dlcloses it, and each reload
-  // leaves glibc's atexit records behind (about 7 KB per input). libFuzzer then counts more mallocs than frees and
-  // runs a full leak scan after every input, which made this target ≈ 5× slower. One Bag kept for the process keeps
-  // the plugin loaded, so an input's allocations balance unless our reader really leaks.
-  static const rosbag::Bag keeps_the_encryptor_plugin_loaded;
   // rosbag reads files only: one scratch file per fuzzing process, rewritten for every input.
   static const std::filesystem::path file =
       std::filesystem::temp_directory_path() / ("freeplay-fuzz-" + std::to_string(getpid()) + ".bag");

@@ -159,6 +159,11 @@ SyncMetrics sync_metrics(const std::vector<TimedPose>& finger, const std::vector
   metrics.mean_lag_s = lag_sum / n;
 
   // Best delay: a 10 ms grid over [0, max_lag_s], then 1 ms steps around the best grid point (smaller lag on ties).
+  // Once the latest pose delayed by a lag is no later than the first, every delayed position is the first pose, for
+  // this lag and every larger one (floating-point subtraction is monotonic): they all give the same error, so only
+  // the first of them in a scan can win.
+  double latest = finger.front().t;
+  for (const TimedPose& pose : finger) latest = std::max(latest, pose.t);
   const auto scan = [&](long first, long last, double step, double& best_lag, double& best_error) {
     for (long k = first; k <= last; ++k) {
       const double lag = static_cast<double>(k) * step;
@@ -168,6 +173,7 @@ SyncMetrics sync_metrics(const std::vector<TimedPose>& finger, const std::vector
         best_error = error;
         best_lag = lag;
       }
+      if (latest - lag <= finger.front().t) break;
     }
   };
   double best_lag = 0.0;

@@ -29,6 +29,11 @@ std::mutex& bag_lifecycle_mutex() {
 
 Bag::Bag() {
   std::lock_guard lock(bag_lifecycle_mutex());
+  // Every rosbag::Bag loads its encryptor plugin through class_loader, and the last one to go unloads it: one Bag
+  // kept for the process (never destroyed, so nothing runs after class_loader's own statics at exit) keeps the
+  // library loaded, so a session's bag neither reloads it nor relinks its symbols, nor leaves glibc's atexit records
+  // of each reload behind (which made libFuzzer leak-scan every fuzz_bag input).
+  [[maybe_unused]] static const rosbag::Bag* const keeps_the_encryptor_plugin_loaded = new rosbag::Bag();
   bag_ = std::make_unique<rosbag::Bag>();
 }
 

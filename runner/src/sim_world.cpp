@@ -183,6 +183,14 @@ void SimWorld::snapshot(EpisodeSnapshot& out, std::string_view stage) {
   }
 }
 
+const std::vector<sim::ItemState>& SimWorld::current_items() {
+  if (items_input_count_ != tray_.input_count()) {
+    tray_.items(items_);
+    items_input_count_ = tray_.input_count();
+  }
+  return items_;
+}
+
 void SimWorld::refresh_seen_zones() {
   if (seen_zones_version_ == tray_.background_version()) return;
   seen_zones_version_ = tray_.background_version();
@@ -273,9 +281,9 @@ void SimWorld::perceive(const ChildSlot& me, const std::vector<sim::ItemState>& 
 
 void SimWorld::step_children(double t) {
   refresh_seen_zones();
-  tray_.items(items_);
+  const auto& items = current_items();
   tray_.touches(touches_);
-  for (std::size_t i = 0; i < children_.size(); ++i) perceive(children_[i], items_, t, perceptions_[i]);
+  for (std::size_t i = 0; i < children_.size(); ++i) perceive(children_[i], items, t, perceptions_[i]);
   for (std::size_t i = 0; i < children_.size(); ++i) {
     children_[i].last = child_source_ != nullptr ? child_source_->actions(children_[i].seat_name, t, kTickS)
                                                  : children_[i].agent->step(t, kTickS, perceptions_[i]);

@@ -135,6 +135,8 @@ class SimWorld final : public RobotWorld {
   void add_child(const std::string& seat_name, agents::Seat seat, int finger_offset, agents::ChildProfile profile,
                  Rng rng);
   void refresh_seen_zones();
+  /// The tray's items in `items_`, refilled only when the tray has had an input since the last fill.
+  const std::vector<sim::ItemState>& current_items();
   void perceive(const ChildSlot& me, const std::vector<sim::ItemState>& items, double t,
                 agents::ChildPerception& seen) const;
   void apply(ChildSlot& c, double t);
@@ -155,7 +157,8 @@ class SimWorld final : public RobotWorld {
   bool coded_robot_touching_ = false;
   int coded_robot_item_ = -1;
   std::array<agents::ChildPerception, 2> perceptions_{};
-  std::vector<sim::ItemState> items_;    // the tray's items, refilled where the tick reads them (no allocation)
+  std::vector<sim::ItemState> items_;    // the tray's items (current_items), reusing their storage
+  std::uint64_t items_input_count_ = ~std::uint64_t{0};  // the tray's input_count when items_ was filled
   std::vector<sim::TouchState> touches_;  // the tray's touches, refilled likewise
   std::array<agents::SeenZone, agents::kMaxSeenZones> seen_zones_{};
   int seen_zone_count_ = 0;

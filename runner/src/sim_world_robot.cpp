@@ -20,8 +20,7 @@ policies::Observation& SimWorld::observe(double t, bool perceive_children) {
   policies::Observation& o = observation_;
   o.t = t;
   o.items.clear();
-  tray_.items(items_);
-  for (const auto& item : items_) {
+  for (const auto& item : current_items()) {
     policies::ItemObservation obs;
     obs.name = item.name;
     obs.pose = item.pose;
@@ -101,8 +100,7 @@ void SimWorld::move_ended(const policies::MoveItem& /*move*/, planning::MoveStat
 
 void SimWorld::look_at_point(const Eigen::Vector3d& point) {
   robot_gaze_ = {RobotGaze::Kind::Tray, ""};
-  tray_.items(items_);
-  for (const auto& item : items_) {
+  for (const auto& item : current_items()) {
     if ((item.pose.position() - point.head<2>()).norm() < kGazeOnItemM) robot_gaze_ = {RobotGaze::Kind::Item, item.name};
   }
   body_->look_at(point);

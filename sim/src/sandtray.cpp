@@ -168,6 +168,7 @@ struct Sandtray::Impl {
   Nanoseconds now = 0;
   std::int64_t physics_slots = 0;      // 1/60 s slots elapsed (stepped or skipped)
   std::uint64_t physics_steps = 0;     // b2World::Step calls
+  std::uint64_t input_count = 0;       // calls that may change an item's state (Sandtray::input_count)
   Nanoseconds next_poll = kBackgroundPeriodNs;
   std::vector<Event> events;
 
@@ -627,6 +628,7 @@ Sandtray::~Sandtray() = default;
 
 void Sandtray::signal(Signal s) {
   Impl& d = *impl_;
+  ++d.input_count;
   switch (s) {
     case Signal::BlankInterface:
     case Signal::StartTutorial:
@@ -658,6 +660,7 @@ GameState Sandtray::state() const { return impl_->state; }
 
 TouchOutcome Sandtray::touch_down(int finger, const Vec2& p) {
   Impl& d = *impl_;
+  ++d.input_count;
   Impl::check_finger_id(finger);
   Impl::check_point(p, "touch position");
   Impl::Finger& f = d.fingers[static_cast<std::size_t>(finger)];
@@ -693,6 +696,7 @@ TouchOutcome Sandtray::touch_down(int finger, const Vec2& p) {
 
 void Sandtray::touch_move(int finger, const Vec2& p) {
   Impl& d = *impl_;
+  ++d.input_count;
   d.finger_down(finger);
   Impl::check_point(p, "touch position");
   Impl::Finger& f = d.fingers[static_cast<std::size_t>(finger)];
@@ -703,6 +707,7 @@ void Sandtray::touch_move(int finger, const Vec2& p) {
 
 void Sandtray::touch_up(int finger) {
   Impl& d = *impl_;
+  ++d.input_count;
   d.finger_down(finger);
   d.release_finger(finger, "touch_up");
   d.fingers[static_cast<std::size_t>(finger)] = Impl::Finger{};
@@ -729,6 +734,7 @@ bool Sandtray::drawing_enabled() const { return impl_->drawing; }
 
 void Sandtray::robot_pose(const Vec2& p) {
   Impl& d = *impl_;
+  ++d.input_count;
   if (!finite(p)) throw InputError("robot pose is not finite", "pose", "finite x, y in metres (sandtray frame)");
   if (d.state == GameState::Blank) return;  // the sandbox is hidden: the real subscriber ignores poses
   if (d.robot.last_pose && (*d.robot.last_pose - p).norm() < kRobotPoseEpsilonM) return;
@@ -756,6 +762,7 @@ std::optional<Vec2> Sandtray::robot_hand() const { return impl_->robot.hand; }
 
 void Sandtray::place_item(const std::string& name, const Pose2& pose) {
   Impl& d = *impl_;
+  ++d.input_count;
   const std::size_t index = d.catalogue->index_of(name);
   if (!std::isfinite(pose.x) || !std::isfinite(pose.y) || !std::isfinite(pose.theta)) {
     throw InputError(fmt::format("pose of '{}' is not finite", name), "pose", "finite x, y (m) and theta (rad)");
@@ -774,6 +781,7 @@ void Sandtray::step(double dt) {
   if (!std::isfinite(dt) || dt < 0.0 || dt > 3600.0) {
     throw InputError(fmt::format("time step {} s is not allowed", dt), "dt", "0 <= dt <= 3600 seconds");
   }
+  ++impl_->input_count;
   impl_->advance(impl_->now + std::llround(dt * 1e9));
 }
 
@@ -782,6 +790,8 @@ double Sandtray::time() const { return impl_->seconds(); }
 std::int64_t Sandtray::tick_count() const { return impl_->now / kGameTickNs; }
 
 std::uint64_t Sandtray::physics_steps() const { return impl_->physics_steps; }
+
+std::uint64_t Sandtray::input_count() const { return impl_->input_count; }
 
 bool Sandtray::asleep() const { return impl_->all_asleep(); }
 

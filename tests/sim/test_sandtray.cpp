@@ -494,6 +494,40 @@ TEST(Sandtray, IdleTrayTakesNoPhysicsSteps) {
   EXPECT_GT(tray->physics_steps(), steps) << "a drag wakes the world";
 }
 
+TEST(Sandtray, EveryCallThatMayMoveAnItemCountsAsAnInput) {
+  // SimWorld refills its item snapshot only when input_count moved: a mutator that forgot to count would leave it
+  // stale.
+  auto tray = make_tray(18);
+  auto count = tray->input_count();
+  const auto counts = [&](const char* what) {
+    EXPECT_GT(tray->input_count(), count) << what;
+    count = tray->input_count();
+  };
+  tray->signal(Signal::StartFreeplay);
+  counts("signal");
+  tray->step(0.1);
+  counts("step");
+  const std::string name = grabbable_item(*tray);
+  const Vec2 at = tray->item(name).pose.position();
+  tray->touch_down(1, at);
+  counts("touch_down");
+  tray->touch_move(1, Vec2(0.3, -0.15));
+  counts("touch_move");
+  tray->touch_up(1);
+  counts("touch_up");
+  tray->robot_pose(Vec2(0.3, -0.2));
+  counts("robot_pose");
+  tray->place_item(name, Pose2{0.2, -0.2, 0.0});
+  counts("place_item");
+  const auto snapshot = tray->items();
+  (void)tray->item(name);
+  (void)tray->touches();
+  (void)tray->state_hash();
+  (void)tray->drain_events();
+  tray->select_colour(PaletteColour::Eraser);
+  EXPECT_EQ(tray->input_count(), count) << "reads, event draining and the brush colour move no item";
+}
+
 TEST(Sandtray, FramesAndFootprints) {
   auto tray = make_tray(17);
   tray->signal(Signal::StartFreeplay);

@@ -141,6 +141,9 @@ class Sandtray {
   std::int64_t tick_count() const;
   /// Number of b2World::Step calls made so far (an idle, all-asleep tray takes none).
   std::uint64_t physics_steps() const;
+  /// Number of calls so far that may have changed an item's state (signals, touches, robot poses, placements,
+  /// steps): while it stays the same, `items()` answers the same.
+  std::uint64_t input_count() const;
   /// True when no item body is awake (the next physics steps will be skipped).
   bool asleep() const;
 
