@@ -30,16 +30,19 @@ std::string item_names(const std::vector<Obstacle>& footprints) {
 
 // Mean distance between the fingertip stream and the finger stream delayed by `lag` (the finger stream is linear
 // between poses and held before the first and after the last); one forward walk, as the query times increase.
+// `from_first[i]` is fingertip i's distance to the first pose, which every lag's held-at-the-start prefix adds.
 double mean_error_at_lag(const std::vector<TimedPose>& finger, const std::vector<FollowReport>& fingertip,
-                         double lag) {
+                         const std::vector<double>& from_first, double lag) {
   double sum = 0.0;
   std::size_t segment = 0;  // finger[segment].t <= query < finger[segment + 1].t
   for (std::size_t i = 0; i < finger.size(); ++i) {
     const double t = finger[i].t - lag;
-    Vec2 p;
     if (t <= finger.front().t) {
-      p = finger.front().position;
-    } else if (t >= finger.back().t) {
+      sum += from_first[i];
+      continue;
+    }
+    Vec2 p;
+    if (t >= finger.back().t) {
       p = finger.back().position;
     } else {
       while (finger[segment + 1].t <= t) ++segment;
@@ -164,11 +167,16 @@ SyncMetrics sync_metrics(const std::vector<TimedPose>& finger, const std::vector
   // the first of them in a scan can win.
   double latest = finger.front().t;
   for (const TimedPose& pose : finger) latest = std::max(latest, pose.t);
+  thread_local std::vector<double> from_first;  // reused: no allocation once a long move has been measured
+  from_first.resize(finger.size());
+  for (std::size_t i = 0; i < finger.size(); ++i) {
+    from_first[i] = (fingertip[i].fingertip_on_screen - finger.front().position).norm();
+  }
   const auto scan = [&](long first, long last, double step, double& best_lag, double& best_error) {
     for (long k = first; k <= last; ++k) {
       const double lag = static_cast<double>(k) * step;
       if (lag < 0.0 || lag > max_lag_s + 1e-12) continue;
-      const double error = mean_error_at_lag(finger, fingertip, lag);
+      const double error = mean_error_at_lag(finger, fingertip, from_first, lag);
       if (error < best_error - 1e-15) {
         best_error = error;
         best_lag = lag;
