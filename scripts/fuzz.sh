@@ -18,7 +18,7 @@ cmake -S . -B build-fuzz "${generator[@]}" -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_C
 cmake --build build-fuzz -j "$(nproc)" --target "${targets[@]/#/fuzz_}"
 
 # Seed corpora: the shipped scenarios, suites and baselines; a few overrides; annotations written by the simulation;
-# a tiny recorded bag (made by build/freeplay when it is built).
+# two tiny recorded bags (made by build/freeplay when it is built).
 seeds=build-fuzz/seeds
 mkdir -p "$seeds"/{scenario,suite,overrides,annotations,bag}
 cp scenarios/*.yaml "$seeds/scenario/"
@@ -32,13 +32,18 @@ for o in planner.name=rrtconnect perception.latency_s=0.3 'cameras=[{name: env_c
 done
 printf 'purple:\n  - noplay: [100, 101.5]\n  - solitary: [100, 104]\nyellow:\n  - passive: [100, 104]\n  - "?": [1, 2]\n' \
   > "$seeds/annotations/0.yaml"
-if [[ " ${targets[*]} " == *" bag "* ]] && [ -x build/freeplay ] && [ ! -f "$seeds/bag/0.bag" ]; then
+# Two bags: uncompressed chunks (as the real bags) and lz4 chunks (record.compression), so that the fuzzer starts
+# from a valid compressed chunk too.
+for compression in none lz4; do
+  seed="$seeds/bag/$compression.bag"
+  [[ " ${targets[*]} " == *" bag "* ]] && [ -x build/freeplay ] && [ ! -f "$seed" ] || continue
   run=$(mktemp -d)
   build/freeplay run scenarios/child-child.yaml --quiet --record --out "$run/r" --episodes 1 --set protocol.greeting_s=0 \
-    --set protocol.tutorial_s=0 --set protocol.freeplay_cap_s=1 --set protocol.debriefing_s=0 >/dev/null
-  cp "$(find "$run/r" -name freeplay.bag | head -1)" "$seeds/bag/0.bag"
+    --set protocol.tutorial_s=0 --set protocol.freeplay_cap_s=1 --set protocol.debriefing_s=0 \
+    --set record.compression=$compression >/dev/null
+  cp "$(find "$run/r" -name freeplay.bag | head -1)" "$seed"
   rm -rf "$run"
-fi
+done
 
 status=0
 printf '%-12s %12s %8s %8s\n' target executions seconds crashes

@@ -96,18 +96,24 @@ class Checker {
 
  private:
  private:
-  /// Reads the version line as rosbag does (`#ROS<name> V<major>.<minor>`, up to the first newline, after which the
-  /// records start); true for 2.0. A 1.2 bag fails here (rosbag's 1.2 reader trusts its lengths too, and freeplay
-  /// writes 2.0); anything else is left to rosbag, which refuses it.
+  /// Reads the version line as rosbag does (`fgets` into 1 024 bytes: up to and including the first newline, at most
+  /// 1 023 bytes, after which the records start; then `#ROS<name> V<major>.<minor>`); true for 2.0. A 1.2 bag fails
+  /// here (rosbag's 1.2 reader trusts its lengths too, and freeplay writes 2.0); anything else is left to rosbag,
+  /// which refuses it.
   bool version_2_0() {
+    constexpr std::size_t kLineBytes = 1023;
     std::string line;
-    if (!std::getline(in_, line)) return false;
-    header_at_ = line.size() + 1;
+    char c = 0;
+    while (line.size() < kLineBytes && in_.get(c)) {
+      line.push_back(c);
+      if (c == '\n') break;
+    }
+    header_at_ = line.size();
     char name[100] = {};
     int major = 0, minor = 0;
     if (std::sscanf(line.c_str(), "#ROS%99s V%d.%d", name, &major, &minor) != 3) return false;
     if (major == 1 && minor == 2) fail(0, "a ROS bag 1.2 (freeplay reads bags of version 2.0)");
-    return major == 2 && minor == 0 && header_at_ <= size_;
+    return major == 2 && minor == 0;
   }
 
   struct Record {

@@ -870,6 +870,19 @@ TEST(Replay, TheVersionLineIsReadAsRosbagReadsIt) {
   }
   const auto e = replay_error(file);
   EXPECT_NE(std::string(e.what()).find("a ROS bag 1.2 (freeplay reads bags of version 2.0)"), std::string::npos) << e.what();
+  // rosbag reads the line with fgets into 1 024 bytes: without a newline, its first record starts at byte 1 023
+  // (found by fuzz_bag: a header length of 3.6 GB there, then rosbag's assert).
+  {
+    std::ofstream f(file, std::ios::binary | std::ios::trunc);
+    f << "#ROSBAG V2.0" << std::string(1011, 'x');
+    const std::uint32_t huge = 0xD79F828DU;
+    f.write(reinterpret_cast<const char*>(&huge), 4);
+    f << std::string(44, 'y');
+  }
+  const auto long_line = replay_error(file);
+  EXPECT_NE(std::string(long_line.what()).find("corrupt bag record at byte 1023: a header of 3617555085 bytes"),
+            std::string::npos)
+      << long_line.what();
 }
 
 TEST(Replay, AZoneWithMorePointsThanItsMessageIsRefusedBeforeItIsAllocated) {
