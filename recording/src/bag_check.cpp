@@ -183,7 +183,8 @@ class Checker {
 
   void index_data(std::uint64_t at, const Record& r) {
     const auto count = uint_field(r.fields, "count");
-    if (count * 12 > r.data_length) fail(at, fmt::format("an index of {} entries holds {} bytes", count, r.data_length));
+    // rosbag reads count × 12 bytes and the next record right after them, so the data must be exactly that long.
+    if (count * 12 != r.data_length) fail(at, fmt::format("an index of {} entries holds {} bytes", count, r.data_length));
     for (std::uint64_t i = 0; i < count; ++i) {
       const auto offset = read_u32(r.data_at + i * 12 + 8);
       const bool known = chunk_compressed_ ? offset < chunk_size_ : chunk_messages_.contains(offset);
@@ -196,7 +197,8 @@ class Checker {
     const auto chunk_pos = uint_field(r.fields, "chunk_pos");
     if (!chunk_starts_.contains(chunk_pos)) fail(at, fmt::format("a chunk info points at byte {}, no chunk", chunk_pos));
     const auto count = uint_field(r.fields, "count");
-    if (count * 8 > r.data_length) fail(at, fmt::format("a chunk info of {} connections holds {} bytes", count, r.data_length));
+    // Read like an index record: count × 8 bytes, then the next record.
+    if (count * 8 != r.data_length) fail(at, fmt::format("a chunk info of {} connections holds {} bytes", count, r.data_length));
     std::set<std::uint64_t> connections;
     for (std::uint64_t i = 0; i < count; ++i) connections.insert(read_u32(r.data_at + i * 8));
     chunk_connections_.emplace_back(chunk_pos, connections.size());

@@ -885,6 +885,23 @@ TEST(Replay, TheVersionLineIsReadAsRosbagReadsIt) {
       << long_line.what();
 }
 
+TEST(Replay, AnIndexShorterThanItsDataIsRefusedBeforeRosbagReadsPastIt) {
+  // rosbag reads `count` entries and the next index record right after them (found by fuzz_bag: count 0 over 12
+  // bytes, then a garbage header length and rosbag's assert).
+  const auto file = bag_with_event_text("bad-index-count", R"({"tick": 1.0, "t": 1.0, "source": "x", "type": "y"})");
+  {
+    std::fstream f(file, std::ios::binary | std::ios::in | std::ios::out);
+    const std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    const auto at = bytes.find(std::string("\x0a\0\0\0count=", 10));
+    ASSERT_NE(at, std::string::npos);
+    f.seekp(static_cast<std::streamoff>(at + 10));
+    const std::uint32_t none = 0;
+    f.write(reinterpret_cast<const char*>(&none), 4);
+  }
+  const auto e = replay_error(file);
+  EXPECT_NE(std::string(e.what()).find("an index of 0 entries holds 12 bytes"), std::string::npos) << e.what();
+}
+
 TEST(Replay, AZoneWithMorePointsThanItsMessageIsRefusedBeforeItIsAllocated) {
   // The case fuzz_bag found: a Marker's point count of ~1.9e9, which ROS resized to (46 GB) before reading a point.
   const auto file = fresh_dir("bad-points") / "freeplay.bag";

@@ -8,13 +8,17 @@
 namespace freeplay::recording {
 
 /// Walks every record of `file` (`#ROSBAG V2.0`; per record: header length, header, data length, data; the records
-/// inside uncompressed chunks too) and throws an InputError naming the file and the byte offset when a length runs
-/// past its record or the file, a record's or connection's header is not made of `length name=value` fields that
-/// fill it exactly, a chunk claims more than 512 MiB, an index entry points at no record of its chunk,
-/// a chunk-info record at no chunk or lists more connections than its data holds, the bag header's index position at
-/// no record, or fewer records than rosbag will read where it reads them: the bag header's `conn_count` connection
-/// and `chunk_count` chunk-info records from its index position, and one index record per connection after each chunk. A file without the 2.0 magic or
-/// without an index (a killed recording) is left to rosbag, whose messages say what is wrong.
+/// inside uncompressed chunks too) and throws an InputError naming the file and the byte offset when:
+/// - a length runs past its record or the file, or a chunk claims more than 512 MiB;
+/// - a record's or connection's header is not made of `length name=value` fields that fill it exactly;
+/// - an index entry points at no record of its chunk, a chunk-info record at no chunk, or the bag header's index
+///   position at no record;
+/// - an index or chunk-info record's data is not exactly its `count` entries (rosbag reads the next record right
+///   after them);
+/// - fewer records are there than rosbag reads by count: the bag header's `conn_count` connection and `chunk_count`
+///   chunk-info records from its index position, and one index record per connection after each chunk.
+/// A file without the 2.0 version line or without an index (a killed recording) is left to rosbag, whose messages
+/// say what is wrong.
 void check_bag_structure(const std::filesystem::path& file);
 
 }  // namespace freeplay::recording
