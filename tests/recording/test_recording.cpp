@@ -761,15 +761,21 @@ TEST(Replay, AMetricTheBagCannotSupplyIsReportedAsDiffering) {
 }
 
 /// Writes a bag holding one /freeplay/events message with `text` as its data.
-std::filesystem::path bag_with_event_text(const std::string& name, const std::string& text) {
+/// A bag holding one message `m` on `topic` at t = 1 s.
+template <class M>
+std::filesystem::path bag_with_message(const std::string& name, const std::string& topic, const M& m) {
   const auto file = fresh_dir(name) / "freeplay.bag";
   Bag bag;
   bag.open(file.string(), rosbag::bagmode::Write);
-  msg::String m;
-  m.data = ros_string(text);
-  bag.get().write(std::string(topics::kEvents), ros_time(1.0), m);
+  bag.get().write(topic, ros_time(1.0), m);
   bag.close();
   return file;
+}
+
+std::filesystem::path bag_with_event_text(const std::string& name, const std::string& text) {
+  msg::String m;
+  m.data = ros_string(text);
+  return bag_with_message(name, std::string(topics::kEvents), m);
 }
 
 /// The InputError that reading and replaying `file` raises (fails the test when none is raised).
@@ -811,14 +817,14 @@ TEST(Replay, ARecordLengthPastTheEndOfTheFileIsRefusedBeforeRosbagReadsIt) {
   EXPECT_NE(std::string(e.what()).find("corrupt bag record at byte 13"), std::string::npos) << e.what();
 }
 
-/// Overwrites the 4 bytes before the first occurrence of `marker` in `file` (a stored container's length) with `length`.
-void patch_length_before(const std::filesystem::path& file, const std::string& marker, std::uint32_t length) {
+/// Overwrites the 4 bytes at `offset` from the first occurrence of `marker` in `file` with `value`.
+void patch_u32(const std::filesystem::path& file, const std::string& marker, std::ptrdiff_t offset, std::uint32_t value) {
   std::fstream f(file, std::ios::binary | std::ios::in | std::ios::out);
   const std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
   const auto at = bytes.find(marker);
   ASSERT_NE(at, std::string::npos);
-  f.seekp(static_cast<std::streamoff>(at) - 4);
-  f.write(reinterpret_cast<const char*>(&length), 4);
+  f.seekp(static_cast<std::streamoff>(at) + offset);
+  f.write(reinterpret_cast<const char*>(&value), 4);
 }
 
 TEST(Replay, AHeaderFieldLongerThanItsHeaderIsRefusedBeforeRosbagReadsIt) {
@@ -839,15 +845,7 @@ TEST(Replay, MoreConnectionsThanTheIndexHoldsAreRefusedBeforeRosbagReadsPastTheF
   // rosbag reads `conn_count` connection records from the index position, past the file's end if it claims more
   // (found by fuzz_bag: a realloc of a garbage length, then rosbag's assert).
   const auto file = bag_with_event_text("bad-conn-count", R"({"tick": 1.0, "t": 1.0, "source": "x", "type": "y"})");
-  {
-    std::fstream f(file, std::ios::binary | std::ios::in | std::ios::out);
-    const std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-    const auto field = bytes.find("conn_count=");
-    ASSERT_NE(field, std::string::npos);
-    f.seekp(static_cast<std::streamoff>(field + std::string("conn_count=").size()));
-    const std::uint32_t many = 1000;
-    f.write(reinterpret_cast<const char*>(&many), 4);
-  }
+  patch_u32(file, "conn_count=", 11, 1000);  // the value after the name
   const auto e = replay_error(file);
   EXPECT_EQ(e.where().file, file.string()) << e.what();
   EXPECT_NE(std::string(e.what()).find("counts 1000 connection records at its index, fewer are there"), std::string::npos)
@@ -889,52 +887,32 @@ TEST(Replay, AnIndexShorterThanItsDataIsRefusedBeforeRosbagReadsPastIt) {
   // rosbag reads `count` entries and the next index record right after them (found by fuzz_bag: count 0 over 12
   // bytes, then a garbage header length and rosbag's assert).
   const auto file = bag_with_event_text("bad-index-count", R"({"tick": 1.0, "t": 1.0, "source": "x", "type": "y"})");
-  {
-    std::fstream f(file, std::ios::binary | std::ios::in | std::ios::out);
-    const std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-    const auto at = bytes.find(std::string("\x0a\0\0\0count=", 10));
-    ASSERT_NE(at, std::string::npos);
-    f.seekp(static_cast<std::streamoff>(at + 10));
-    const std::uint32_t none = 0;
-    f.write(reinterpret_cast<const char*>(&none), 4);
-  }
+  patch_u32(file, std::string("\x0a\0\0\0count=", 10), 10, 0);  // the index record's count (first such field)
   const auto e = replay_error(file);
   EXPECT_NE(std::string(e.what()).find("an index of 0 entries holds 12 bytes"), std::string::npos) << e.what();
 }
 
 TEST(Replay, AZoneWithMorePointsThanItsMessageIsRefusedBeforeItIsAllocated) {
   // The case fuzz_bag found: a Marker's point count of ~1.9e9, which ROS resized to (46 GB) before reading a point.
-  const auto file = fresh_dir("bad-points") / "freeplay.bag";
-  {
-    Bag bag;
-    bag.open(file.string(), rosbag::bagmode::Write);
-    msg::MarkerArray zones;
-    msg::Marker zone;
-    zone.ns = ros_string("sandbox_zone_water");
-    msg::Point p;
-    p.x = 1234.5;  // found in the file below
-    zone.points = {p, p, p};
-    zones.markers.push_back(zone);
-    bag.get().write(std::string(topics::kZones), ros_time(1.0), zones);
-    bag.close();
-  }
+  msg::MarkerArray zones;
+  msg::Marker zone;
+  zone.ns = ros_string("sandbox_zone_water");
+  msg::Point p;
+  p.x = 1234.5;  // found in the file below
+  zone.points = {p, p, p};
+  zones.markers.push_back(zone);
+  const auto file = bag_with_message("bad-points", std::string(topics::kZones), zones);
   const double sentinel = 1234.5;
-  patch_length_before(file, std::string(reinterpret_cast<const char*>(&sentinel), sizeof sentinel), 0x73000000U);
+  patch_u32(file, std::string(reinterpret_cast<const char*>(&sentinel), sizeof sentinel), -4, 0x73000000U);  // the count
   const auto e = replay_error(file);
   EXPECT_EQ(e.key(), topics::kZones) << e.what();
   EXPECT_NE(std::string(e.what()).find("corrupt message"), std::string::npos) << e.what();
 }
 
 TEST(Replay, AMessageOfAnotherTypeOnAKnownTopicNamesBothTypes) {
-  const auto file = fresh_dir("wrong-type") / "freeplay.bag";
-  {
-    Bag bag;
-    bag.open(file.string(), rosbag::bagmode::Write);
-    msg::String text;
-    text.data = ros_string("not zones");
-    bag.get().write(std::string(topics::kZones), ros_time(1.0), text);
-    bag.close();
-  }
+  msg::String text;
+  text.data = ros_string("not zones");
+  const auto file = bag_with_message("wrong-type", std::string(topics::kZones), text);
   const auto e = replay_error(file);
   EXPECT_EQ(e.where().file, file.string()) << e.what();
   EXPECT_EQ(e.key(), topics::kZones) << e.what();
