@@ -48,12 +48,14 @@ if(NOT TARGET ompl::ompl)
 endif()
 
 # Debian's ROS 1 bag libraries (librosbag-storage-dev and the message packages): one imported target. Their headers
-# need the extra include folders below (engineering-notes.md §1).
+# need the extra include folders below (engineering-notes.md §1). roslz4 and bz2 are rosbag's decompressors, which
+# the bag check (recording/src/bag_check.cpp) calls itself.
 find_library(FREEPLAY_ROSBAG_STORAGE_LIBRARY NAMES rosbag_storage)
 if(FREEPLAY_ROSBAG_STORAGE_LIBRARY AND EXISTS /usr/include/rosbag/bag.h AND EXISTS /usr/include/visualization_msgs)
   add_library(ros::rosbag_storage INTERFACE IMPORTED)
   set(FREEPLAY_ROS_LIBRARIES)
-  foreach(lib rosbag_storage roscpp_serialization rostime cpp_common console_bridge boost_filesystem class_loader)
+  foreach(lib rosbag_storage roscpp_serialization rostime cpp_common console_bridge boost_filesystem class_loader
+              roslz4 bz2)
     find_library(FREEPLAY_ROS_${lib} NAMES ${lib} REQUIRED)
     list(APPEND FREEPLAY_ROS_LIBRARIES ${FREEPLAY_ROS_${lib}})
   endforeach()

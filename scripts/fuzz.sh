@@ -18,7 +18,7 @@ cmake -S . -B build-fuzz "${generator[@]}" -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_C
 cmake --build build-fuzz -j "$(nproc)" --target "${targets[@]/#/fuzz_}"
 
 # Seed corpora: the shipped scenarios, suites and baselines; a few overrides; annotations written by the simulation;
-# two tiny recorded bags (made by build/freeplay when it is built).
+# three tiny recorded bags (made by build/freeplay when it is built).
 seeds=build-fuzz/seeds
 mkdir -p "$seeds"/{scenario,suite,overrides,annotations,bag}
 cp scenarios/*.yaml "$seeds/scenario/"
@@ -32,9 +32,9 @@ for o in planner.name=rrtconnect perception.latency_s=0.3 'cameras=[{name: env_c
 done
 printf 'purple:\n  - noplay: [100, 101.5]\n  - solitary: [100, 104]\nyellow:\n  - passive: [100, 104]\n  - "?": [1, 2]\n' \
   > "$seeds/annotations/0.yaml"
-# Two bags: uncompressed chunks (as the real bags) and lz4 chunks (record.compression), so that the fuzzer starts
-# from a valid compressed chunk too.
-for compression in none lz4; do
+# Three bags: uncompressed chunks (as the real bags), lz4 and bz2 chunks (record.compression), so that the fuzzer
+# starts from valid compressed chunks too.
+for compression in none lz4 bz2; do
   seed="$seeds/bag/$compression.bag"
   [[ " ${targets[*]} " == *" bag "* ]] && [ -x build/freeplay ] && [ ! -f "$seed" ] || continue
   run=$(mktemp -d)

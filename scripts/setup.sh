@@ -11,7 +11,7 @@ packages=(
   libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev libboost-math-dev
   librosbag-storage-dev libsensor-msgs-dev libtf2-msgs-dev libgeometry-msgs-dev libstd-msgs-dev
   libvisualization-msgs-dev librcpputils-dev librcutils-dev libament-index-cpp-dev python3-rosbag
-  libmp3lame-dev libssl-dev
+  libmp3lame-dev libssl-dev libroslz4-dev libbz2-dev
   libespeak-ng-dev espeak-ng-data  # the optional espeak-ng voice (voice_espeak/, GPL-3; babble without it)
   # ROS 1 on a live graph (ros/: freeplay serve / robot) and its message generators and tests
   libroscpp-dev libactionlib-dev libactionlib-msgs-dev libnav-msgs-dev libros-rosgraph-msgs-dev python3-genmsg

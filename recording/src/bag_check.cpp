@@ -7,11 +7,15 @@
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <optional>
 #include <set>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include <bzlib.h>
+#include <roslz4/lz4s.h>
 
 #include "freeplay/core/error.hpp"
 
@@ -59,17 +63,55 @@ char op_of(const std::map<std::string, std::string>& fields) {
   return it != fields.end() && it->second.size() == 1 ? it->second[0] : '\0';
 }
 
+/// Where records are read from: the bag file, or a compressed chunk's data once decompressed.
+class Source {
+ public:
+  virtual ~Source() = default;
+  /// Reads `n` bytes starting at `at` into `out`; false when they are not all there.
+  virtual bool read(std::uint64_t at, char* out, std::uint64_t n) = 0;
+};
+
+/// The bag file, read where asked.
+class FileSource final : public Source {
+ public:
+  explicit FileSource(const std::filesystem::path& file) : in_(file, std::ios::binary) {}
+  bool read(std::uint64_t at, char* out, std::uint64_t n) override {
+    in_.clear();
+    in_.seekg(static_cast<std::streamoff>(at));
+    return static_cast<bool>(in_.read(out, static_cast<std::streamsize>(n)));
+  }
+  /// The stream itself, for the version line.
+  std::istream& stream() { return in_; }
+
+ private:
+  std::ifstream in_;
+};
+
+/// Bytes in memory: a decompressed chunk.
+class MemorySource final : public Source {
+ public:
+  MemorySource(const char* bytes, std::uint64_t size) : bytes_(bytes), size_(size) {}
+  bool read(std::uint64_t at, char* out, std::uint64_t n) override {
+    if (at > size_ || n > size_ - at) return false;
+    std::memcpy(out, bytes_ + at, n);
+    return true;
+  }
+
+ private:
+  const char* bytes_;
+  std::uint64_t size_;
+};
+
 class Checker {
  public:
-  explicit Checker(const std::filesystem::path& file)
-      : file_(file), in_(file, std::ios::binary), size_(std::filesystem::file_size(file)) {}
+  explicit Checker(const std::filesystem::path& file) : path_(file), file_(file), size_(std::filesystem::file_size(file)) {}
 
   void run() {
     if (!version_2_0()) return;
     std::uint64_t index_pos = 0;
     std::map<std::string, std::string> bag_header;
     for (std::uint64_t at = header_at_; at < size_;) {
-      const auto r = record(at, size_);
+      const auto r = record(file_, at, size_);
       ordinal_of_[at] = ops_.size();
       const char op = op_of(r.fields);
       ops_.push_back(op);
@@ -95,7 +137,6 @@ class Checker {
   }
 
  private:
- private:
   /// Reads the version line as rosbag does (`fgets` into 1 024 bytes: up to and including the first newline, at most
   /// 1 023 bytes, after which the records start; then `#ROS<name> V<major>.<minor>`); true for 2.0. A 1.2 bag fails
   /// here (rosbag's 1.2 reader trusts its lengths too, and freeplay writes 2.0); anything else is left to rosbag,
@@ -104,7 +145,7 @@ class Checker {
     constexpr std::size_t kLineBytes = 1023;
     std::string line;
     char c = 0;
-    while (line.size() < kLineBytes && in_.get(c)) {
+    while (line.size() < kLineBytes && file_.stream().get(c)) {
       line.push_back(c);
       if (c == '\n') break;
     }
@@ -123,16 +164,15 @@ class Checker {
     std::uint64_t end = 0;          // first byte after the record
   };
 
+  /// Throws the InputError for the record at byte `at` of the file (of the decompressed chunk being walked, if any).
   [[noreturn]] void fail(std::uint64_t at, const std::string& what) const {
-    throw InputError(fmt::format("corrupt bag record at byte {}: {}", at, what), "SESSION_DIR",
-                     "a ROS 1 bag written by `freeplay run --record`", {file_.string()});
+    throw InputError(fmt::format("corrupt bag record at byte {}{}: {}", at, inside_, what), "SESSION_DIR",
+                     "a ROS 1 bag written by `freeplay run --record`", {path_.string()});
   }
 
-  std::uint64_t read_u32(std::uint64_t at) {
+  std::uint64_t read_u32(Source& source, std::uint64_t at) {
     std::uint32_t value = 0;
-    in_.clear();
-    in_.seekg(static_cast<std::streamoff>(at));
-    if (!in_.read(reinterpret_cast<char*>(&value), 4)) fail(at, "the file ends inside a length");
+    if (!source.read(at, reinterpret_cast<char*>(&value), 4)) fail(at, "the data end inside a length");
     return value;
   }
 
@@ -143,42 +183,82 @@ class Checker {
     return std::move(*fields);
   }
 
-  /// The record at `at`, which must end by `end`.
-  Record record(std::uint64_t at, std::uint64_t end) {
+  /// The record of `source` at `at`, which must end by `end`.
+  Record record(Source& source, std::uint64_t at, std::uint64_t end) {
     if (end - at < 4) fail(at, "the record ends inside a length");
-    const auto header_length = read_u32(at);
+    const auto header_length = read_u32(source, at);
     if (header_length > end - at - 4) fail(at, fmt::format("a header of {} bytes runs past its end", header_length));
     std::string header(header_length, '\0');
-    if (!in_.read(header.data(), static_cast<std::streamsize>(header_length))) fail(at, "unreadable header");
+    if (!source.read(at + 4, header.data(), header_length)) fail(at, "unreadable header");
     Record r;
     r.fields = parsed_header(at, header);
     const auto length_at = at + 4 + header_length;
     if (end - length_at < 4) fail(length_at, "the record ends inside a length");
-    r.data_length = read_u32(length_at);
+    r.data_length = read_u32(source, length_at);
     r.data_at = length_at + 4;
     if (r.data_length > end - r.data_at) fail(length_at, fmt::format("data of {} bytes run past its end", r.data_length));
     r.end = r.data_at + r.data_length;
     if (op_of(r.fields) == kOpConnection) {  // a connection's data is the connection header, parsed the same way
       std::string data(r.data_length, '\0');
-      if (!in_.read(data.data(), static_cast<std::streamsize>(r.data_length))) fail(r.data_at, "unreadable connection header");
+      if (!source.read(r.data_at, data.data(), r.data_length)) fail(r.data_at, "unreadable connection header");
       parsed_header(r.data_at, data);
     }
     return r;
   }
 
+  /// A chunk record: its records, decompressed first for lz4 and bz2 (rosbag reads a message by decompressing its
+  /// whole chunk and parsing the record at the index entry's offset, trusting its header as in an uncompressed chunk).
   void chunk(std::uint64_t at, const Record& r) {
     chunk_starts_.insert(at);
     chunk_size_ = uint_field(r.fields, "size");
     if (chunk_size_ > kMaxChunkBytes) fail(at, "a chunk claims more than 512 MiB");
     chunk_messages_.clear();
-    chunk_compressed_ = !(r.fields.contains("compression") && r.fields.at("compression") == "none");
-    if (chunk_compressed_) return;  // the records inside are checked by the decompressor's bounds only
-    if (chunk_size_ != r.data_length) fail(at, "an uncompressed chunk's size differs from its data length");
-    for (std::uint64_t inner = r.data_at; inner < r.end;) {
-      const auto m = record(inner, r.end);
-      if (op_of(m.fields) == kOpMessage) chunk_messages_.insert(inner - r.data_at);
+    const auto it = r.fields.find("compression");
+    const std::string compression = it == r.fields.end() ? "" : it->second;
+    if (compression == "none") {
+      if (chunk_size_ != r.data_length) fail(at, "an uncompressed chunk's size differs from its data length");
+      walk_chunk(file_, r.data_at, r.end);
+      return;
+    }
+    const auto plain = decompressed(at, r, compression);
+    MemorySource memory(plain.get(), chunk_size_);
+    inside_ = fmt::format(" of the {} chunk at byte {}, decompressed", compression, at);
+    walk_chunk(memory, 0, chunk_size_);
+    inside_.clear();
+  }
+
+  /// Records the message records among the records of a chunk's data, `begin` to `end` of `source`.
+  void walk_chunk(Source& source, std::uint64_t begin, std::uint64_t end) {
+    for (std::uint64_t inner = begin; inner < end;) {
+      const auto m = record(source, inner, end);
+      if (op_of(m.fields) == kOpMessage) chunk_messages_.insert(inner - begin);
       inner = m.end;
     }
+  }
+
+  /// The data of the compressed chunk `r` at `at`, decompressed as rosbag does (roslz4 or libbz2, one call); it must
+  /// come out exactly `size` bytes, the size rosbag allocates for it.
+  std::unique_ptr<char[]> decompressed(std::uint64_t at, const Record& r, const std::string& compression) {
+    if (compression != "lz4" && compression != "bz2") {
+      fail(at, fmt::format("a chunk compressed with '{}' (allowed: none, lz4, bz2)", compression));
+    }
+    std::string packed(r.data_length, '\0');
+    if (!file_.read(r.data_at, packed.data(), r.data_length)) fail(r.data_at, "unreadable chunk data");
+    auto plain = std::make_unique_for_overwrite<char[]>(chunk_size_ + 1);  // +1: a valid pointer for size 0
+    auto produced = static_cast<unsigned int>(chunk_size_);
+    const int status = compression == "lz4"
+                           ? roslz4_buffToBuffDecompress(packed.data(), static_cast<unsigned int>(packed.size()),
+                                                         plain.get(), &produced)
+                           : BZ2_bzBuffToBuffDecompress(plain.get(), &produced, packed.data(),
+                                                        static_cast<unsigned int>(packed.size()), 0, 0);
+    if (status != (compression == "lz4" ? ROSLZ4_OK : BZ_OK)) {
+      fail(at, fmt::format("its {} data do not decompress into its size of {} bytes (error {})", compression,
+                           chunk_size_, status));
+    }
+    if (produced != chunk_size_) {
+      fail(at, fmt::format("its {} data decompress to {} bytes, its size says {}", compression, produced, chunk_size_));
+    }
+    return plain;
   }
 
   void index_data(std::uint64_t at, const Record& r) {
@@ -186,9 +266,8 @@ class Checker {
     // rosbag reads count × 12 bytes and the next record right after them, so the data must be exactly that long.
     if (count * 12 != r.data_length) fail(at, fmt::format("an index of {} entries holds {} bytes", count, r.data_length));
     for (std::uint64_t i = 0; i < count; ++i) {
-      const auto offset = read_u32(r.data_at + i * 12 + 8);
-      const bool known = chunk_compressed_ ? offset < chunk_size_ : chunk_messages_.contains(offset);
-      if (!known) fail(at, fmt::format("an index entry points at byte {} of its chunk, no message record", offset));
+      const auto offset = read_u32(file_, r.data_at + i * 12 + 8);
+      if (!chunk_messages_.contains(offset)) fail(at, fmt::format("an index entry points at byte {} of its chunk, no message record", offset));
     }
   }
 
@@ -200,7 +279,7 @@ class Checker {
     // Read like an index record: count × 8 bytes, then the next record.
     if (count * 8 != r.data_length) fail(at, fmt::format("a chunk info of {} connections holds {} bytes", count, r.data_length));
     std::set<std::uint64_t> connections;
-    for (std::uint64_t i = 0; i < count; ++i) connections.insert(read_u32(r.data_at + i * 8));
+    for (std::uint64_t i = 0; i < count; ++i) connections.insert(read_u32(file_, r.data_at + i * 8));
     chunk_connections_.emplace_back(chunk_pos, connections.size());
   }
 
@@ -232,9 +311,10 @@ class Checker {
     }
   }
 
-  std::filesystem::path file_;
-  std::ifstream in_;
+  std::filesystem::path path_;
+  FileSource file_;
   std::uint64_t size_;
+  std::string inside_;  // while a decompressed chunk is walked: which one, for error messages
   std::uint64_t header_at_ = 0;  // the bag header record, after the version line
   std::map<std::uint64_t, std::size_t> ordinal_of_;  // top-level records' starts (a few thousand in a long session)
   std::vector<char> ops_;                            // top-level records' ops, in file order
@@ -242,7 +322,6 @@ class Checker {
   std::set<std::uint64_t> chunk_starts_;
   std::set<std::uint64_t> chunk_messages_;   // message records of the last chunk (offsets inside its data)
   std::uint64_t chunk_size_ = 0;
-  bool chunk_compressed_ = false;
 };
 
 }  // namespace

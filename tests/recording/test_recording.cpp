@@ -14,6 +14,7 @@
 #include "freeplay/recording/audio.hpp"
 #include "freeplay/recording/audio_data.hpp"
 #include "audio_checks.hpp"
+#include "test_dirs.hpp"
 #include "freeplay/recording/bag_description.hpp"
 #include "freeplay/recording/camera_topics.hpp"
 #include "freeplay/recording/pinsoro_csv.hpp"
@@ -27,6 +28,7 @@
 
 using namespace freeplay;
 using namespace freeplay::recording;
+using freeplay::recording::test_dirs::fresh_dir;
 
 namespace {
 
@@ -39,15 +41,6 @@ runner::Scenario tiny(const std::string& condition, const std::string& extra = "
                   "protocol: {{greeting_s: 1, tutorial_s: 1, freeplay_cap_s: {}, debriefing_s: 1}}\n{}",
                   condition, freeplay_cap_s, extra),
       "tiny.yaml"));
-}
-
-// One folder per test process: ctest runs the tests of this file in parallel processes.
-std::filesystem::path fresh_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("freeplay-recording-" + name + "-" + std::to_string(static_cast<long>(::getpid())));
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
 }
 
 // A synthetic colour frame that changes with time (smooth, so JPEG keeps it close).
@@ -758,177 +751,6 @@ TEST(Replay, AMetricTheBagCannotSupplyIsReportedAsDiffering) {
     }
   }
   EXPECT_EQ(equal, 2);
-}
-
-/// Writes a bag holding one /freeplay/events message with `text` as its data.
-/// A bag holding one message `m` on `topic` at t = 1 s.
-template <class M>
-std::filesystem::path bag_with_message(const std::string& name, const std::string& topic, const M& m) {
-  const auto file = fresh_dir(name) / "freeplay.bag";
-  Bag bag;
-  bag.open(file.string(), rosbag::bagmode::Write);
-  bag.get().write(topic, ros_time(1.0), m);
-  bag.close();
-  return file;
-}
-
-std::filesystem::path bag_with_event_text(const std::string& name, const std::string& text) {
-  msg::String m;
-  m.data = ros_string(text);
-  return bag_with_message(name, std::string(topics::kEvents), m);
-}
-
-/// The InputError that reading and replaying `file` raises (fails the test when none is raised).
-InputError replay_error(const std::filesystem::path& file) {
-  try {
-    recompute_metrics(read_session(file));
-  } catch (const InputError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no InputError for " << file;
-  return InputError("none");
-}
-
-TEST(Replay, AnEventThatIsNotJsonNamesTheBag) {
-  const auto file = bag_with_event_text("bad-json", "{\"tick\": 1.0, \"t\":");
-  const auto e = replay_error(file);
-  EXPECT_EQ(e.where().file, file.string()) << e.what();
-  EXPECT_NE(std::string(e.what()).find("not a readable freeplay recording"), std::string::npos) << e.what();
-}
-
-TEST(Replay, AnEventOfTheWrongShapeNamesTheBag) {
-  // Valid JSON whose fields have the wrong types: the metrics unit's reads fail, and the error names the bag.
-  const auto file = bag_with_event_text(
-      "bad-shape", R"({"tick": 1.0, "t": 1.0, "source": "robot", "type": "move_result", "data": {"item": 3}})");
-  const auto e = replay_error(file);
-  EXPECT_EQ(e.where().file, file.string()) << e.what();
-}
-
-TEST(Replay, ARecordLengthPastTheEndOfTheFileIsRefusedBeforeRosbagReadsIt) {
-  const auto file = bag_with_event_text("bad-length", R"({"tick": 1.0, "t": 1.0, "source": "x", "type": "y"})");
-  {
-    std::fstream f(file, std::ios::binary | std::ios::in | std::ios::out);
-    f.seekp(13);  // the first record's header length, after "#ROSBAG V2.0\n"
-    const std::uint32_t huge = 0xFFFFFFF0U;
-    f.write(reinterpret_cast<const char*>(&huge), 4);
-  }
-  const auto e = replay_error(file);
-  EXPECT_EQ(e.where().file, file.string()) << e.what();
-  EXPECT_NE(std::string(e.what()).find("corrupt bag record at byte 13"), std::string::npos) << e.what();
-}
-
-/// Overwrites the 4 bytes at `offset` from the first occurrence of `marker` in `file` with `value`.
-void patch_u32(const std::filesystem::path& file, const std::string& marker, std::ptrdiff_t offset, std::uint32_t value) {
-  std::fstream f(file, std::ios::binary | std::ios::in | std::ios::out);
-  const std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-  const auto at = bytes.find(marker);
-  ASSERT_NE(at, std::string::npos);
-  f.seekp(static_cast<std::streamoff>(at) + offset);
-  f.write(reinterpret_cast<const char*>(&value), 4);
-}
-
-TEST(Replay, AHeaderFieldLongerThanItsHeaderIsRefusedBeforeRosbagReadsIt) {
-  // ROS's Header::parse trusts a field's length and copies past its buffer (found by fuzz_bag under ASan).
-  const auto file = bag_with_event_text("bad-field", R"({"tick": 1.0, "t": 1.0, "source": "x", "type": "y"})");
-  {
-    std::fstream f(file, std::ios::binary | std::ios::in | std::ios::out);
-    f.seekp(17);  // the bag header's first field length, after the magic and the header's own length
-    const std::uint32_t past_the_header = 4000;
-    f.write(reinterpret_cast<const char*>(&past_the_header), 4);
-  }
-  const auto e = replay_error(file);
-  EXPECT_EQ(e.where().file, file.string()) << e.what();
-  EXPECT_NE(std::string(e.what()).find("corrupt bag record at byte 13: a malformed header"), std::string::npos) << e.what();
-}
-
-TEST(Replay, MoreConnectionsThanTheIndexHoldsAreRefusedBeforeRosbagReadsPastTheFile) {
-  // rosbag reads `conn_count` connection records from the index position, past the file's end if it claims more
-  // (found by fuzz_bag: a realloc of a garbage length, then rosbag's assert).
-  const auto file = bag_with_event_text("bad-conn-count", R"({"tick": 1.0, "t": 1.0, "source": "x", "type": "y"})");
-  patch_u32(file, "conn_count=", 11, 1000);  // the value after the name
-  const auto e = replay_error(file);
-  EXPECT_EQ(e.where().file, file.string()) << e.what();
-  EXPECT_NE(std::string(e.what()).find("counts 1000 connection records at its index, fewer are there"), std::string::npos)
-      << e.what();
-}
-
-TEST(Replay, TheVersionLineIsReadAsRosbagReadsIt) {
-  // rosbag reads the version up to the first newline: records after a longer line are checked where rosbag reads
-  // them (fuzz_bag found "#ROSBAG V2.0#..." skipping the check, then rosbag's assert), and a 1.2 bag is refused.
-  const auto file = bag_with_event_text("bad-version", R"({"tick": 1.0, "t": 1.0, "source": "x", "type": "y"})");
-  {
-    std::fstream f(file, std::ios::binary | std::ios::in | std::ios::out);
-    f.seekp(12);
-    f.put('#');
-  }
-  EXPECT_EQ(replay_error(file).where().file, file.string());
-  {
-    std::fstream f(file, std::ios::binary | std::ios::in | std::ios::out);
-    f.write("#ROSBAG V1.2\n", 13);
-  }
-  const auto e = replay_error(file);
-  EXPECT_NE(std::string(e.what()).find("a ROS bag 1.2 (freeplay reads bags of version 2.0)"), std::string::npos) << e.what();
-  // rosbag reads the line with fgets into 1 024 bytes: without a newline, its first record starts at byte 1 023
-  // (found by fuzz_bag: a header length of 3.6 GB there, then rosbag's assert).
-  {
-    std::ofstream f(file, std::ios::binary | std::ios::trunc);
-    f << "#ROSBAG V2.0" << std::string(1011, 'x');
-    const std::uint32_t huge = 0xD79F828DU;
-    f.write(reinterpret_cast<const char*>(&huge), 4);
-    f << std::string(44, 'y');
-  }
-  const auto long_line = replay_error(file);
-  EXPECT_NE(std::string(long_line.what()).find("corrupt bag record at byte 1023: a header of 3617555085 bytes"),
-            std::string::npos)
-      << long_line.what();
-}
-
-TEST(Replay, AnIndexShorterThanItsDataIsRefusedBeforeRosbagReadsPastIt) {
-  // rosbag reads `count` entries and the next index record right after them (found by fuzz_bag: count 0 over 12
-  // bytes, then a garbage header length and rosbag's assert).
-  const auto file = bag_with_event_text("bad-index-count", R"({"tick": 1.0, "t": 1.0, "source": "x", "type": "y"})");
-  patch_u32(file, std::string("\x0a\0\0\0count=", 10), 10, 0);  // the index record's count (first such field)
-  const auto e = replay_error(file);
-  EXPECT_NE(std::string(e.what()).find("an index of 0 entries holds 12 bytes"), std::string::npos) << e.what();
-}
-
-TEST(Replay, AZoneWithMorePointsThanItsMessageIsRefusedBeforeItIsAllocated) {
-  // The case fuzz_bag found: a Marker's point count of ~1.9e9, which ROS resized to (46 GB) before reading a point.
-  msg::MarkerArray zones;
-  msg::Marker zone;
-  zone.ns = ros_string("sandbox_zone_water");
-  msg::Point p;
-  p.x = 1234.5;  // found in the file below
-  zone.points = {p, p, p};
-  zones.markers.push_back(zone);
-  const auto file = bag_with_message("bad-points", std::string(topics::kZones), zones);
-  const double sentinel = 1234.5;
-  patch_u32(file, std::string(reinterpret_cast<const char*>(&sentinel), sizeof sentinel), -4, 0x73000000U);  // the count
-  const auto e = replay_error(file);
-  EXPECT_EQ(e.key(), topics::kZones) << e.what();
-  EXPECT_NE(std::string(e.what()).find("corrupt message"), std::string::npos) << e.what();
-}
-
-TEST(Replay, AMessageOfAnotherTypeOnAKnownTopicNamesBothTypes) {
-  msg::String text;
-  text.data = ros_string("not zones");
-  const auto file = bag_with_message("wrong-type", std::string(topics::kZones), text);
-  const auto e = replay_error(file);
-  EXPECT_EQ(e.where().file, file.string()) << e.what();
-  EXPECT_EQ(e.key(), topics::kZones) << e.what();
-  EXPECT_NE(std::string(e.what()).find("std_msgs/String"), std::string::npos) << e.what();
-  EXPECT_NE(std::string(e.what()).find("visualization_msgs/MarkerArray"), std::string::npos) << e.what();
-}
-
-TEST(Replay, MessagesOfEveryLengthAreStillRead) {
-  // The allocation bound is met exactly by a string that is the whole message (its length plus 4 bytes).
-  for (const std::size_t n : {0UL, 1UL, 15UL, 16UL, 29UL, 30UL, 31UL, 200UL}) {
-    const auto file = bag_with_event_text("lengths", std::string(n, 'a'));  // the string is the whole message
-    Bag bag;
-    open_session_bag(file, bag);
-    rosbag::View view(bag.get());
-    for (const auto& m : view) EXPECT_EQ(read_message<msg::String>(m)->data.size(), n);
-  }
 }
 
 TEST(SessionVideos, TheSessionFolderHoldsEachCamerasRawVideo) {

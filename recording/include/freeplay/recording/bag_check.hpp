@@ -8,10 +8,12 @@
 namespace freeplay::recording {
 
 /// Walks every record of `file` (`#ROSBAG V2.0`; per record: header length, header, data length, data; the records
-/// inside uncompressed chunks too) and throws an InputError naming the file and the byte offset when:
+/// inside every chunk too, lz4 and bz2 chunks decompressed as rosbag does) and throws an InputError naming the file
+/// and the byte offset (and the chunk, for a record inside a decompressed one) when:
 /// - a length runs past its record or the file, or a chunk claims more than 512 MiB;
+/// - a chunk's compression is not none, lz4 or bz2, or its data do not decompress to exactly its `size`;
 /// - a record's or connection's header is not made of `length name=value` fields that fill it exactly;
-/// - an index entry points at no record of its chunk, a chunk-info record at no chunk, or the bag header's index
+/// - an index entry points at no message record of its chunk, a chunk-info record at no chunk, or the bag header's index
 ///   position at no record;
 /// - an index or chunk-info record's data is not exactly its `count` entries (rosbag reads the next record right
 ///   after them);
