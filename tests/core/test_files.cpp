@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
+#include <limits>
 
 #include "freeplay/core/atomic_file.hpp"
 #include "freeplay/core/error.hpp"
@@ -41,6 +43,11 @@ TEST(EventLog, IncrementalTextAndHashEqualTheEventsSerialisedAgain) {
   EventLog log;
   log.emit({0.5, "child.purple", "stroke_finished", {{"colour", "blue"}, {"points", {1, 2.5, -3e-7}}}});
   log.append({{1.25, "sandtray", "releasing_zebra", nullptr}, {2.0, "robot", "say", {{"text", "h\u00e9 \"x\"\n"}}}});
+  // Sources and types that need escaping, times that are not plain numbers, data that is not an object.
+  log.append({{std::nan(""), "child.\"odd\"\\", "t\u00e9\x01\x7f", {{"a", nlohmann::json::object()}}},
+              {1e300, "", "x y", "plain text"},
+              {-0.0, "robot", "say", {1, 2}},
+              {std::numeric_limits<double>::infinity(), "robot", "say", 3}});
   std::string rebuilt;
   for (const auto& e : log.events()) rebuilt += e.to_json().dump() + '\n';
   EXPECT_EQ(log.to_jsonl(), rebuilt);
