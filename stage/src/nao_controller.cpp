@@ -400,7 +400,12 @@ PointingResult NaoController::solve_pointing(const ArmBase& base, const Vector3d
       preferred[static_cast<Eigen::Index>(c)] = kPointingSeed[c];
     }
     const Eigen::Matrix3d jjt = j * j.transpose() + kDamping * kDamping * Eigen::Matrix3d::Identity();
-    const Eigen::Matrix<double, 5, 3> pseudo_inverse = j.transpose() * jjt.ldlt().solve(Eigen::Matrix3d::Identity());
+    // (JJᵀ + λ²I)⁻¹ one column at a time: Eigen solves a matrix right-hand side through its blocked triangular
+    // solver (packing, blocking) and a vector one inline, with the same operations in the same order.
+    const Eigen::LDLT<Eigen::Matrix3d> factors(jjt);
+    Eigen::Matrix3d inverse;
+    for (int c = 0; c < 3; ++c) inverse.col(c) = factors.solve(Eigen::Vector3d::Unit(c));
+    const Eigen::Matrix<double, 5, 3> pseudo_inverse = j.transpose() * inverse;
     Eigen::Matrix<double, 5, 1> step = pseudo_inverse * error;
     const Eigen::Matrix<double, 5, 5> null_space = Eigen::Matrix<double, 5, 5>::Identity() - pseudo_inverse * j;
     step += null_space * (0.05 * (preferred - q));
