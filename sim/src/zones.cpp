@@ -316,17 +316,26 @@ ZoneMap ZoneSegmenter::segment(const cv::Mat& bgr, double metres_per_pixel, std:
   if (small_hsv_.size() != small_size) {
     std::swap(small_hsv_, previous_small_);
     cv::resize(hsv_, small_hsv_, small_size, 0, 0, cv::INTER_LINEAR);
+    resized_rows_ = cv::Range(0, small_size.height);
   } else {
+    // previous_small_ equals small_hsv_ except in the rows the last call resized: those are brought over, and it is
+    // the image before this one again.
+    if (previous_small_.size() != small_size) {
+      small_hsv_.copyTo(previous_small_);
+    } else if (!resized_rows_.empty()) {
+      small_hsv_.rowRange(resized_rows_).copyTo(previous_small_.rowRange(resized_rows_));
+    }
     // Only the bands of rows whose source rows were converted again.
-    small_hsv_.copyTo(previous_small_);
     const int bands = small_height / band_rows_;
     const int source_rows = bgr.rows / bands;
-    for (int band = converted.y / source_rows; band < bands && band * source_rows < converted.y + converted.height;
-         ++band) {
+    const int first_band = converted.y / source_rows;
+    int band = first_band;
+    for (; band < bands && band * source_rows < converted.y + converted.height; ++band) {
       cv::Mat target = small_hsv_.rowRange(band * band_rows_, (band + 1) * band_rows_);
       cv::resize(hsv_.rowRange(band * source_rows, (band + 1) * source_rows), target, target.size(), 0, 0,
                  cv::INTER_LINEAR);
     }
+    resized_rows_ = band > first_band ? cv::Range(first_band * band_rows_, band * band_rows_) : cv::Range(0, 0);
   }
   const double scale_x = static_cast<double>(bgr.cols) / kZoneSegmentationWidthPx;
   const double scale_y = static_cast<double>(bgr.rows) / small_height;
@@ -336,7 +345,13 @@ ZoneMap ZoneSegmenter::segment(const cv::Mat& bgr, double metres_per_pixel, std:
   const cv::Rect small_whole(cv::Point(0, 0), small_size);
   cv::Rect region = small_whole;
   if (previous_small_.size() == small_size && rasters_[0]->mask().size() == small_size) {
-    region = differing_rect(small_hsv_, previous_small_);
+    // Outside the rows resized just now the two are equal.
+    region = cv::Rect();
+    if (!resized_rows_.empty()) {
+      const cv::Rect differing =
+          differing_rect(small_hsv_.rowRange(resized_rows_), previous_small_.rowRange(resized_rows_));
+      if (!differing.empty()) region = differing + cv::Point(0, resized_rows_.start);
+    }
   } else {
     for (auto& raster : rasters_) raster->resize(small_size);
   }

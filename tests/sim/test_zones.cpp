@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
 #include <opencv2/imgproc.hpp>
@@ -270,6 +271,33 @@ TEST(ZoneSegmenter, ReusesUnchangedMasksAndMatchesAFullSegmentation) {
   EXPECT_EQ(segmenter.counters().images, 6u);
   EXPECT_GT(segmenter.counters().masks_reused, kZoneColours.size());
   EXPECT_LT(segmenter.counters().masks_recomputed, 6 * kZoneColours.size());
+}
+
+// Told which pixels changed (as the sandtray tells it), the segmenter converts and compares only those rows, and
+// still gives exactly the from-scratch zones: small strokes in different places one after the other, and no change.
+TEST(ZoneSegmenter, ChangedRectanglesGiveTheFromScratchZones) {
+  DrawingCanvas canvas(960);
+  canvas.set_background(BackgroundKind::FreeplayMap);
+  const double scale = kScreenWidthM / canvas.width_px();
+  ZoneSegmenter segmenter;
+  const auto segment_changes = [&] {
+    const auto zones = segmenter.segment(canvas.image(), scale, canvas.unpublished_rect());
+    canvas.mark_published();
+    return zones;
+  };
+  EXPECT_TRUE(same_zones(segment_changes(), ZoneMap::segment(canvas.image(), scale)));
+  const std::array<Vec2, 5> centres = {Vec2(0.1, -0.05), Vec2(0.45, -0.28), Vec2(0.3, -0.15), Vec2(0.3, -0.15),
+                                       Vec2(0.12, -0.3)};
+  for (std::size_t k = 0; k < centres.size(); ++k) {
+    scribble(canvas, k % 2 == 0 ? PaletteColour::Red : PaletteColour::Yellow, centres[k], 0.04);
+    EXPECT_TRUE(same_zones(segment_changes(), ZoneMap::segment(canvas.image(), scale))) << "after stroke " << k;
+    EXPECT_TRUE(same_zones(segment_changes(), ZoneMap::segment(canvas.image(), scale))) << "no change after " << k;
+  }
+  // Back to the bare background: the pixels the strokes changed change back.
+  scribble(canvas, PaletteColour::Blue, Vec2(0.2, -0.2), 0.04);
+  EXPECT_TRUE(same_zones(segment_changes(), ZoneMap::segment(canvas.image(), scale)));
+  canvas.clear_strokes();
+  EXPECT_TRUE(same_zones(segment_changes(), ZoneMap::segment(canvas.image(), scale)));
 }
 
 }  // namespace

@@ -114,7 +114,8 @@ class ZoneSegmenter {
   cv::Mat hsv_;                 // full-size HSV image; only the rows the downsampling reads are kept up to date
   std::vector<char> needed_;    // rows of hsv_ the downsampling reads
   cv::Mat small_hsv_;           // the downsampled HSV image
-  cv::Mat previous_small_;      // the one before (the masks change only where they differ)
+  cv::Mat previous_small_;      // the one before (the masks change only where they differ), except in resized_rows_
+  cv::Range resized_rows_;      // rows of small_hsv_ the last call resized (there previous_small_ is not updated yet)
   int band_rows_ = 0;           // rows of small_hsv_ resized together (a band of source rows resizes alone exactly)
   Counters counters_;
 };
