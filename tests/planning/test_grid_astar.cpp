@@ -2,8 +2,15 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <functional>
 #include <limits>
+#include <map>
+#include <queue>
 #include <set>
+#include <tuple>
+#include <utility>
+#include <vector>
 
 #include "freeplay/planning/astar.hpp"
 #include "freeplay/planning/layout.hpp"
@@ -201,6 +208,75 @@ TEST(AStar, AdmissibleHeuristicMatchesDijkstraOnRandomLayouts) {
     EXPECT_DOUBLE_EQ(search.cost, dijkstra_cost(grid, start, goal, 20)) << "seed " << seed;
     // The faithful Manhattan heuristic is never cheaper than the optimum.
     EXPECT_GE(astar_search(grid, start, goal, AStarHeuristic::Manhattan, 20, 10.0).cost, search.cost);
+  }
+}
+
+// The search as the real planner's priority queue runs it (std::priority_queue on f, ties by insertion order), cell by
+// cell, independent of the A* code's open list: its path and number of expansions.
+std::pair<std::vector<Cell>, std::uint64_t> reference_astar(const OccupancyGrid& grid, Cell start, Cell goal,
+                                                            AStarHeuristic heuristic, int margin) {
+  const auto inside = [&](const Cell& c) {
+    return c.col >= -margin && c.col < OccupancyGrid::kCols + margin && c.row >= -margin &&
+           c.row < OccupancyGrid::kRows + margin;
+  };
+  const auto h = [&](const Cell& c) {
+    const int dx = std::abs(goal.col - c.col), dy = std::abs(goal.row - c.row);
+    return heuristic == AStarHeuristic::Manhattan ? dx + dy : std::max(dx, dy);
+  };
+  using Key = std::pair<int, int>;
+  std::map<Key, double> g;
+  std::map<Key, Key> parent;
+  std::set<Key> closed;
+  using Entry = std::tuple<double, std::uint64_t, Key>;  // f, insertion order, cell
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
+  std::uint64_t order = 0, expanded = 0;
+  g[{start.col, start.row}] = 0.0;
+  open.emplace(h(start), order++, Key{start.col, start.row});
+  while (!open.empty()) {
+    const auto [f, o, here] = open.top();
+    open.pop();
+    if (!closed.insert(here).second) continue;
+    ++expanded;
+    if (here == Key{goal.col, goal.row}) break;
+    // The real planner's neighbour order: the four sides, then the four diagonals.
+    for (const auto& [dc, dr] : {Key{1, 0}, Key{-1, 0}, Key{0, 1}, Key{0, -1}, Key{1, 1}, Key{1, -1}, Key{-1, 1},
+                                Key{-1, -1}}) {
+      const Cell next{here.first + dc, here.second + dr};
+      const Key k{next.col, next.row};
+      if (!inside(next) || closed.contains(k)) continue;
+      const double candidate = g[here] + grid.step_cost(next);
+      if (!g.contains(k) || candidate < g[k]) {
+        g[k] = candidate;
+        parent[k] = here;
+        open.emplace(candidate + h(next), order++, k);
+      }
+    }
+  }
+  std::vector<Cell> cells;
+  for (Key k{goal.col, goal.row};; k = parent.at(k)) {
+    cells.insert(cells.begin(), Cell{k.first, k.second});
+    if (k == Key{start.col, start.row}) break;
+  }
+  return {cells, expanded};
+}
+
+// The open list pops exactly what the real planner's priority queue pops: the same path and the same expansions,
+// ties included, with both heuristics (Manhattan is not consistent, so the popped f goes down as well as up).
+TEST(AStar, ExpandsInThePriorityQueuesOrder) {
+  const auto shapes = approximate_item_shapes();
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+    Rng rng(seed);
+    const Layout layout = random_layout(shapes, 10, rng);
+    const OccupancyGrid grid = OccupancyGrid::build(layout.obstacles(), layout.items[0].name);
+    const Cell start = OccupancyGrid::cell_of({layout.items[0].pose.x, layout.items[0].pose.y});
+    const Cell goal = OccupancyGrid::cell_of({rng.uniform(0.0, 0.528), rng.uniform(-0.335, 0.0)});
+    for (const auto heuristic : {AStarHeuristic::Manhattan, AStarHeuristic::Chebyshev}) {
+      const GridSearchResult search = astar_search(grid, start, goal, heuristic, 5, 10.0);
+      const auto [cells, expanded] = reference_astar(grid, start, goal, heuristic, 5);
+      ASSERT_TRUE(search.found);
+      EXPECT_EQ(search.cells, cells) << "seed " << seed;
+      EXPECT_EQ(search.expanded, expanded) << "seed " << seed;
+    }
   }
 }
 
