@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <limits>
 #include <algorithm>
+#include <functional>
 
 #include <fmt/format.h>
 
@@ -37,59 +38,11 @@ struct NodeState {
   bool closed;
 };
 
-// The open list: a 4-ary min-heap on (f, insertion order). The order makes every key distinct, so any correct heap
-// pops the same sequence; four children per node halve the depth of a binary heap, and a pop (the common operation,
-// one per entry pushed) moves fewer entries.
-class OpenHeap {
- public:
-  bool empty() const { return entries_.empty(); }
-  void clear() { entries_.clear(); }
-
-  void push(const OpenEntry& entry) {
-    std::size_t hole = entries_.size();
-    entries_.push_back(entry);
-    while (hole > 0) {
-      const std::size_t parent = (hole - 1) / kArity;
-      if (!(entries_[parent] > entry)) break;
-      entries_[hole] = entries_[parent];
-      hole = parent;
-    }
-    entries_[hole] = entry;
-  }
-
-  OpenEntry pop() {
-    const OpenEntry top = entries_.front();
-    const OpenEntry last = entries_.back();
-    entries_.pop_back();
-    const std::size_t size = entries_.size();
-    if (size == 0) return top;
-    std::size_t hole = 0;
-    while (true) {
-      const std::size_t first = hole * kArity + 1;
-      if (first >= size) break;
-      const std::size_t end = std::min(first + kArity, size);
-      std::size_t least = first;
-      for (std::size_t c = first + 1; c < end; ++c) {
-        if (entries_[least] > entries_[c]) least = c;
-      }
-      if (!(last > entries_[least])) break;
-      entries_[hole] = entries_[least];
-      hole = least;
-    }
-    entries_[hole] = last;
-    return top;
-  }
-
- private:
-  static constexpr std::size_t kArity = 4;
-  std::vector<OpenEntry> entries_;
-};
-
 // A search's per-cell records and open list, kept between searches on one thread: a new search only bumps the
 // search number (a record from an earlier search reads as untouched), so nothing is cleared or allocated.
 struct SearchWorkspace {
   std::vector<NodeState> nodes;
-  OpenHeap open;
+  std::vector<OpenEntry> open;
   std::uint32_t search = 0;
   void begin(std::size_t count) {
     if (nodes.size() != count || search == std::numeric_limits<std::uint32_t>::max()) {
@@ -161,8 +114,12 @@ GridSearchResult astar_search(const OccupancyGrid& grid, const Cell& start, cons
     touch(static_cast<std::size_t>(row) * static_cast<std::size_t>(stride) + static_cast<std::size_t>(stride - 1))
         .closed = true;
   }
-  OpenHeap& open = work.open;
-  const auto push = [&open](const OpenEntry& entry) { open.push(entry); };
+  // The open list is a binary heap kept by push_heap/pop_heap, as std::priority_queue keeps it.
+  std::vector<OpenEntry>& open = work.open;
+  const auto push = [&open](const OpenEntry& entry) {
+    open.push_back(entry);
+    std::push_heap(open.begin(), open.end(), std::greater<>{});
+  };
 
   GridSearchResult result;
   std::uint32_t order = 0;
@@ -178,7 +135,9 @@ GridSearchResult astar_search(const OccupancyGrid& grid, const Cell& start, cons
   }();
 
   while (!open.empty()) {
-    const OpenEntry top = open.pop();
+    std::pop_heap(open.begin(), open.end(), std::greater<>{});
+    const OpenEntry top = open.back();
+    open.pop_back();
     NodeState& here_state = work.nodes[top.node];  // touched when it was pushed
     if (here_state.closed) continue;
     here_state.closed = true;
