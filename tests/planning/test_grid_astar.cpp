@@ -195,14 +195,24 @@ TEST(AStar, UnavoidableCrossingTakesTheCheapestSeamAndMatchesDijkstra) {
   }
 }
 
+/// A random layout of 10 items (seeded), its grid without the first item, and a search from that item to a random goal.
+struct RandomSearch {
+  OccupancyGrid grid;
+  Cell start;
+  Cell goal;
+};
+RandomSearch random_search(std::uint64_t seed) {
+  Rng rng(seed);
+  const Layout layout = random_layout(approximate_item_shapes(), 10, rng);
+  RandomSearch out{OccupancyGrid::build(layout.obstacles(), layout.items[0].name),
+                   OccupancyGrid::cell_of({layout.items[0].pose.x, layout.items[0].pose.y}), {}};
+  out.goal = OccupancyGrid::cell_of({rng.uniform(0.0, 0.528), rng.uniform(-0.335, 0.0)});
+  return out;
+}
+
 TEST(AStar, AdmissibleHeuristicMatchesDijkstraOnRandomLayouts) {
-  const auto shapes = approximate_item_shapes();
   for (std::uint64_t seed = 1; seed <= 6; ++seed) {
-    Rng rng(seed);
-    const Layout layout = random_layout(shapes, 10, rng);
-    const OccupancyGrid grid = OccupancyGrid::build(layout.obstacles(), layout.items[0].name);
-    const Cell start = OccupancyGrid::cell_of({layout.items[0].pose.x, layout.items[0].pose.y});
-    const Cell goal = OccupancyGrid::cell_of({rng.uniform(0.0, 0.528), rng.uniform(-0.335, 0.0)});
+    const auto [grid, start, goal] = random_search(seed);
     const GridSearchResult search = astar_search(grid, start, goal, AStarHeuristic::Chebyshev, 20, 10.0);
     ASSERT_TRUE(search.found);
     EXPECT_DOUBLE_EQ(search.cost, dijkstra_cost(grid, start, goal, 20)) << "seed " << seed;
@@ -263,13 +273,8 @@ std::pair<std::vector<Cell>, std::uint64_t> reference_astar(const OccupancyGrid&
 // The open list pops exactly what the real planner's priority queue pops: the same path and the same expansions,
 // ties included, with both heuristics (Manhattan is not consistent, so the popped f goes down as well as up).
 TEST(AStar, ExpandsInThePriorityQueuesOrder) {
-  const auto shapes = approximate_item_shapes();
   for (std::uint64_t seed = 1; seed <= 4; ++seed) {
-    Rng rng(seed);
-    const Layout layout = random_layout(shapes, 10, rng);
-    const OccupancyGrid grid = OccupancyGrid::build(layout.obstacles(), layout.items[0].name);
-    const Cell start = OccupancyGrid::cell_of({layout.items[0].pose.x, layout.items[0].pose.y});
-    const Cell goal = OccupancyGrid::cell_of({rng.uniform(0.0, 0.528), rng.uniform(-0.335, 0.0)});
+    const auto [grid, start, goal] = random_search(seed);
     for (const auto heuristic : {AStarHeuristic::Manhattan, AStarHeuristic::Chebyshev}) {
       const GridSearchResult search = astar_search(grid, start, goal, heuristic, 5, 10.0);
       const auto [cells, expanded] = reference_astar(grid, start, goal, heuristic, 5);

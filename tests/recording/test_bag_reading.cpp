@@ -61,14 +61,25 @@ InputError replay_error(const std::filesystem::path& file) {
   return InputError("none");
 }
 
+/// The whole of `file`.
+std::string file_bytes(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// Overwrites the 4 bytes at byte `at` of `file` with `value`.
+void write_u32_at(const std::filesystem::path& file, std::streamoff at, std::uint32_t value) {
+  std::fstream f(file, std::ios::binary | std::ios::in | std::ios::out);
+  f.seekp(at);
+  f.write(reinterpret_cast<const char*>(&value), 4);
+}
+
 /// Overwrites the 4 bytes at `offset` from the first occurrence of `marker` in `file` with `value`.
 void patch_u32(const std::filesystem::path& file, const std::string& marker, std::ptrdiff_t offset, std::uint32_t value) {
-  std::fstream f(file, std::ios::binary | std::ios::in | std::ios::out);
-  const std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  const auto bytes = file_bytes(file);
   const auto at = bytes.find(marker);
   ASSERT_NE(at, std::string::npos);
-  f.seekp(static_cast<std::streamoff>(at) + offset);
-  f.write(reinterpret_cast<const char*>(&value), 4);
+  write_u32_at(file, static_cast<std::streamoff>(at) + offset, value);
 }
 
 
@@ -111,11 +122,7 @@ std::string decompressed(std::string packed, const std::string& compression, std
 /// Rewrites the first chunk of the compressed bag `file`: its data decompressed, changed by `change`, compressed
 /// again, and the bag header's index position moved by the change in length. Returns the chunk's byte position.
 std::size_t rewrite_first_chunk(const std::filesystem::path& file, const std::function<void(std::string&)>& change) {
-  std::string bytes;
-  {
-    std::ifstream in(file, std::ios::binary);
-    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  }
+  auto bytes = file_bytes(file);
   const std::size_t bag_header = 13;  // after "#ROSBAG V2.0\n"
   const auto bag_data_length_at = bag_header + 4 + u32_at(bytes, bag_header);
   const auto chunk = bag_data_length_at + 4 + u32_at(bytes, bag_data_length_at);
@@ -168,12 +175,7 @@ TEST(Replay, AnEventOfTheWrongShapeNamesTheBag) {
 
 TEST(Replay, ARecordLengthPastTheEndOfTheFileIsRefusedBeforeRosbagReadsIt) {
   const auto file = bag_with_event_text("bad-length", R"({"tick": 1.0, "t": 1.0, "source": "x", "type": "y"})");
-  {
-    std::fstream f(file, std::ios::binary | std::ios::in | std::ios::out);
-    f.seekp(13);  // the first record's header length, after "#ROSBAG V2.0\n"
-    const std::uint32_t huge = 0xFFFFFFF0U;
-    f.write(reinterpret_cast<const char*>(&huge), 4);
-  }
+  write_u32_at(file, 13, 0xFFFFFFF0U);  // the first record's header length, after "#ROSBAG V2.0\n"
   const auto e = replay_error(file);
   EXPECT_EQ(e.where().file, file.string()) << e.what();
   EXPECT_NE(std::string(e.what()).find("corrupt bag record at byte 13"), std::string::npos) << e.what();
@@ -182,12 +184,7 @@ TEST(Replay, ARecordLengthPastTheEndOfTheFileIsRefusedBeforeRosbagReadsIt) {
 TEST(Replay, AHeaderFieldLongerThanItsHeaderIsRefusedBeforeRosbagReadsIt) {
   // ROS's Header::parse trusts a field's length and copies past its buffer (found by fuzz_bag under ASan).
   const auto file = bag_with_event_text("bad-field", R"({"tick": 1.0, "t": 1.0, "source": "x", "type": "y"})");
-  {
-    std::fstream f(file, std::ios::binary | std::ios::in | std::ios::out);
-    f.seekp(17);  // the bag header's first field length, after the magic and the header's own length
-    const std::uint32_t past_the_header = 4000;
-    f.write(reinterpret_cast<const char*>(&past_the_header), 4);
-  }
+  write_u32_at(file, 17, 4000);  // the bag header's first field length (after the magic and the header's own length)
   const auto e = replay_error(file);
   EXPECT_EQ(e.where().file, file.string()) << e.what();
   EXPECT_NE(std::string(e.what()).find("corrupt bag record at byte 13: a malformed header"), std::string::npos) << e.what();
@@ -310,11 +307,7 @@ TEST(Replay, TheRecordsInsideCompressedChunksAreCheckedLikeUncompressedOnes) {
 TEST(Replay, ACompressedChunkMustDecompressToExactlyItsSize) {
   for (const auto& [name, compression] : kCompressions) {
     const auto file = compressed_event_bag("compressed-size-" + name, compression);
-    std::string bytes;
-    {
-      std::ifstream in(file, std::ios::binary);
-      bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    }
+    const auto bytes = file_bytes(file);
     const auto size_at = bytes.find("size=") + 5;  // the chunk's (the bag header has no size field)
     patch_u32(file, "size=", 5, u32_at(bytes, size_at) + 16);
     const auto e = replay_error(file);
@@ -330,9 +323,9 @@ TEST(Replay, ACompressedChunkMustDecompressToExactlyItsSize) {
 TEST(Replay, AChunkOfAnUnknownCompressionNamesTheAllowedOnes) {
   const auto file = compressed_event_bag("compressed-unknown", rosbag::compression::LZ4);
   {
+    const auto at = file_bytes(file).find("compression=lz4") + 12;
     std::fstream f(file, std::ios::binary | std::ios::in | std::ios::out);
-    const std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-    f.seekp(static_cast<std::streamoff>(bytes.find("compression=lz4") + 12));
+    f.seekp(static_cast<std::streamoff>(at));
     f.write("zip", 3);
   }
   const auto e = replay_error(file);
