@@ -172,6 +172,8 @@ void Schema::validate(YAML::Node node, const std::string& path, const std::strin
     case Kind::Any: return;
     case Kind::Map: {
       if (!node.IsMap()) return wrong(fmt::format("expected a map, found {}", kind_name(node)));
+      // yaml-cpp keeps every repeat of a key and answers lookups with the first: a repeat would be ignored silently.
+      std::map<std::string, YAML::Mark> seen;
       for (auto it = node.begin(); it != node.end(); ++it) {
         if (!it->first.IsScalar()) {
           errors.add(InputError(fmt::format("a key must be a name, found {}", kind_name(it->first)), path,
@@ -179,6 +181,11 @@ void Schema::validate(YAML::Node node, const std::string& path, const std::strin
           continue;
         }
         const auto key = it->first.Scalar();
+        if (const auto [first, inserted] = seen.emplace(key, it->first.Mark()); !inserted) {
+          errors.add(InputError(fmt::format("key '{}' appears twice (first at line {})", key, first->second.line + 1),
+                                join_path(path, key), "each key once", location_of(it->first, file)));
+          continue;
+        }
         if (element_) {
           element_->validate(it->second, join_path(path, key), file, errors);
           continue;

@@ -77,6 +77,18 @@ TEST(YamlSchema, AKeyThatIsNotANameIsAnInputError) {
       << errors.message();
 }
 
+TEST(YamlSchema, AKeyGivenTwiceIsAnInputErrorNamingBothLines) {
+  // yaml-cpp keeps both and answers with the first, so the second would be ignored without a word.
+  YAML::Node node = YAML::Load("rate: 0.5\ncount: 2\nrate: 0.7\n");
+  ValidationErrors errors;
+  settings_schema<Example>()->validate(node, "", "test.yaml", errors);
+  ASSERT_FALSE(errors.empty());
+  EXPECT_NE(errors.message().find("test.yaml:3:1: 'rate': key 'rate' appears twice (first at line 1) (allowed: each "
+                                  "key once)"),
+            std::string::npos)
+      << errors.message();
+}
+
 TEST(YamlSchema, AnOverrideIndexTooLargeForAnIntegerIsAnInputError) {
   YAML::Node root = YAML::Load("cameras: [{name: a}]");
   EXPECT_THROW(apply_override(root, "cameras.99999999999999999999.rate=1"), InputError);

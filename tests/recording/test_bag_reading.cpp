@@ -26,6 +26,7 @@
 
 using namespace freeplay;
 using namespace freeplay::recording;
+using freeplay::recording::test_dirs::file_bytes;
 using freeplay::recording::test_dirs::fresh_dir;
 
 namespace {
@@ -59,12 +60,6 @@ InputError replay_error(const std::filesystem::path& file) {
   }
   ADD_FAILURE() << "no InputError for " << file;
   return InputError("none");
-}
-
-/// The whole of `file`.
-std::string file_bytes(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 /// Overwrites the 4 bytes at byte `at` of `file` with `value`.

@@ -1,9 +1,11 @@
 #pragma once
-// A scratch folder per test and per test process, shared by the recording tests.
+// A scratch folder per test and per test process, and a file read whole, shared by the recording tests.
 
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 namespace freeplay::recording::test_dirs {
@@ -15,6 +17,12 @@ inline std::filesystem::path fresh_dir(const std::string& name) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
+}
+
+/// The whole of `file`, as bytes.
+inline std::string file_bytes(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 }  // namespace freeplay::recording::test_dirs

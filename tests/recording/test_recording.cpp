@@ -28,18 +28,21 @@
 
 using namespace freeplay;
 using namespace freeplay::recording;
+using freeplay::recording::test_dirs::file_bytes;
 using freeplay::recording::test_dirs::fresh_dir;
 
 namespace {
 
 const runner::SharedModels& models() { return runner::SharedModels::shipped(); }
 
-// The tiny protocol of the brief: greeting 1 s, tutorial 1 s, free play 10 s, debriefing 1 s.
-runner::Scenario tiny(const std::string& condition, const std::string& extra = "", double freeplay_cap_s = 10) {
+// The tiny protocol of the brief: greeting 1 s, tutorial 1 s, free play 10 s, debriefing 1 s; `record` is the
+// scenario's record setting.
+runner::Scenario tiny(const std::string& condition, const std::string& extra = "", double freeplay_cap_s = 10,
+                      const std::string& record = "true") {
   return runner::scenario_from_document(parse_yaml(
-      fmt::format("name: tiny\ncondition: {}\nrecord: true\n"
+      fmt::format("name: tiny\ncondition: {}\nrecord: {}\n"
                   "protocol: {{greeting_s: 1, tutorial_s: 1, freeplay_cap_s: {}, debriefing_s: 1}}\n{}",
-                  condition, freeplay_cap_s, extra),
+                  condition, record, freeplay_cap_s, extra),
       "tiny.yaml"));
 }
 
@@ -105,10 +108,10 @@ struct Recorded {
 };
 
 Recorded record_episode(const std::string& name, const std::string& condition, const std::string& extra = "",
-                        std::uint64_t seed = 7, double freeplay_cap_s = 10) {
+                        std::uint64_t seed = 7, double freeplay_cap_s = 10, const std::string& record = "true") {
   Recorded out;
   out.run_dir = fresh_dir(name);
-  const auto scenario = tiny(condition, extra, freeplay_cap_s);
+  const auto scenario = tiny(condition, extra, freeplay_cap_s, record);
   runner::EpisodeObservers observers;
   auto recorder = std::make_unique<BagRecorder>(out.run_dir / "sessions", scenario.recording);
   auto cameras = std::make_unique<SyntheticCameras>();
@@ -257,6 +260,19 @@ TEST(Replay, RecomputesIdenticalMetrics) {
   EXPECT_GT(comparison.size(), 30U);
   for (const auto& c : comparison) EXPECT_TRUE(c.equal) << c.name << ": bag " << c.replayed << " vs record " << c.recorded;
   EXPECT_TRUE(recomputed["extra"]["complete"].get<bool>());
+}
+
+// A session recorded with lz4 or bz2 chunks passes the bag check, which decompresses and walks every chunk, and
+// replays to the same metrics.
+TEST(Replay, RecomputesIdenticalMetricsFromCompressedChunks) {
+  for (const std::string compression : {"lz4", "bz2"}) {
+    const auto r = record_episode("replay-" + compression, "child-robot", "", 7, 10,
+                                  fmt::format("{{bag: true, compression: {}}}", compression));
+    EXPECT_NE(file_bytes(bag_path(r)).find("compression=" + compression), std::string::npos) << compression;
+    const auto comparison = compare_with_record(recompute_metrics(read_session(bag_path(r))), r.result.record);
+    EXPECT_GT(comparison.size(), 30U) << compression;
+    for (const auto& c : comparison) EXPECT_TRUE(c.equal) << compression << " " << c.name;
+  }
 }
 
 TEST(Replay, RecomputesIdenticalMetricsChildChild) {
@@ -655,11 +671,6 @@ std::filesystem::path record_frames(const std::filesystem::path& dir, int thread
   recorder.end(result);
   EXPECT_EQ(recorder.stats().frames, 120U);
   return recorder.paths().bag;
-}
-
-std::string file_bytes(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 }  // namespace
