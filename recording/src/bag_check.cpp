@@ -210,20 +210,20 @@ class Checker {
   /// whole chunk and parsing the record at the index entry's offset, trusting its header as in an uncompressed chunk).
   void chunk(std::uint64_t at, const Record& r) {
     chunk_starts_.insert(at);
-    chunk_size_ = uint_field(r.fields, "size");
-    if (chunk_size_ > kMaxChunkBytes) fail(at, "a chunk claims more than 512 MiB");
+    const auto size = uint_field(r.fields, "size");
+    if (size > kMaxChunkBytes) fail(at, "a chunk claims more than 512 MiB");
     chunk_messages_.clear();
     const auto it = r.fields.find("compression");
     const std::string compression = it == r.fields.end() ? "" : it->second;
     if (compression == "none") {
-      if (chunk_size_ != r.data_length) fail(at, "an uncompressed chunk's size differs from its data length");
+      if (size != r.data_length) fail(at, "an uncompressed chunk's size differs from its data length");
       walk_chunk(file_, r.data_at, r.end);
       return;
     }
-    const auto plain = decompressed(at, r, compression);
-    MemorySource memory(plain.get(), chunk_size_);
+    const auto plain = decompressed(at, r, compression, size);
+    MemorySource memory(plain.get(), size);
     inside_ = fmt::format(" of the {} chunk at byte {}, decompressed", compression, at);
-    walk_chunk(memory, 0, chunk_size_);
+    walk_chunk(memory, 0, size);
     inside_.clear();
   }
 
@@ -237,15 +237,16 @@ class Checker {
   }
 
   /// The data of the compressed chunk `r` at `at`, decompressed as rosbag does (roslz4 or libbz2, one call); it must
-  /// come out exactly `size` bytes, the size rosbag allocates for it.
-  std::unique_ptr<char[]> decompressed(std::uint64_t at, const Record& r, const std::string& compression) {
+  /// come out exactly `size` bytes (the chunk's `size` field), the size rosbag allocates for it.
+  std::unique_ptr<char[]> decompressed(std::uint64_t at, const Record& r, const std::string& compression,
+                                       std::uint64_t size) {
     if (compression != "lz4" && compression != "bz2") {
       fail(at, fmt::format("a chunk compressed with '{}' (allowed: none, lz4, bz2)", compression));
     }
     std::string packed(r.data_length, '\0');
     if (!file_.read(r.data_at, packed.data(), r.data_length)) fail(r.data_at, "unreadable chunk data");
-    auto plain = std::make_unique_for_overwrite<char[]>(chunk_size_ + 1);  // +1: a valid pointer for size 0
-    auto produced = static_cast<unsigned int>(chunk_size_);
+    auto plain = std::make_unique_for_overwrite<char[]>(size + 1);  // +1: a valid pointer for size 0
+    auto produced = static_cast<unsigned int>(size);
     const int status = compression == "lz4"
                            ? roslz4_buffToBuffDecompress(packed.data(), static_cast<unsigned int>(packed.size()),
                                                          plain.get(), &produced)
@@ -253,10 +254,10 @@ class Checker {
                                                         static_cast<unsigned int>(packed.size()), 0, 0);
     if (status != (compression == "lz4" ? ROSLZ4_OK : BZ_OK)) {
       fail(at, fmt::format("its {} data do not decompress into its size of {} bytes (error {})", compression,
-                           chunk_size_, status));
+                           size, status));
     }
-    if (produced != chunk_size_) {
-      fail(at, fmt::format("its {} data decompress to {} bytes, its size says {}", compression, produced, chunk_size_));
+    if (produced != size) {
+      fail(at, fmt::format("its {} data decompress to {} bytes, its size says {}", compression, produced, size));
     }
     return plain;
   }
@@ -321,7 +322,6 @@ class Checker {
   std::vector<std::pair<std::uint64_t, std::size_t>> chunk_connections_;  // chunk-info: its chunk, its connections
   std::set<std::uint64_t> chunk_starts_;
   std::set<std::uint64_t> chunk_messages_;   // message records of the last chunk (offsets inside its data)
-  std::uint64_t chunk_size_ = 0;
 };
 
 }  // namespace
