@@ -74,6 +74,18 @@ struct Segment {
   }
 };
 
+// ⌈v⌉ and ⌊v⌋ as int for a finite v within int's range (a row interval's ends), as static_cast<int>(std::ceil(v))
+// gives them, without the rounding-mode sequence baseline x86-64 inlines for std::ceil.
+int ceil_to_int(double v) {
+  const int truncated = static_cast<int>(v);
+  return truncated + (static_cast<double>(truncated) < v ? 1 : 0);
+}
+
+int floor_to_int(double v) {
+  const int truncated = static_cast<int>(v);
+  return truncated - (static_cast<double>(truncated) > v ? 1 : 0);
+}
+
 }  // namespace
 
 void StrokePainter::cover(const std::vector<cv::Point2d>& path, double width_px, int cols, int rows) {
@@ -97,8 +109,7 @@ void StrokePainter::cover(const std::vector<cv::Point2d>& path, double width_px,
       double lo = 0.0;
       double hi = 0.0;
       if (!segment.row_interval(y, outer, lo, hi)) continue;
-      RowRun run{k, y, std::max(0, static_cast<int>(std::ceil(lo))), std::min(cols - 1, static_cast<int>(std::floor(hi))),
-                 0, 0};
+      RowRun run{k, y, std::max(0, ceil_to_int(lo)), std::min(cols - 1, floor_to_int(hi)), 0, 0};
       if (run.x0 > run.x1) continue;
       // Fully covered pixels [f0, f1] (none when f0 > f1); the rest of [x0, x1] is the anti-aliased rim.
       run.f0 = run.x1 + 1;
@@ -106,8 +117,8 @@ void StrokePainter::cover(const std::vector<cv::Point2d>& path, double width_px,
       double in_lo = 0.0;
       double in_hi = 0.0;
       if (inner > 0.0 && segment.row_interval(y, inner, in_lo, in_hi)) {
-        run.f0 = std::max(run.x0, static_cast<int>(std::ceil(in_lo)));
-        run.f1 = std::min(run.x1, static_cast<int>(std::floor(in_hi)));
+        run.f0 = std::max(run.x0, ceil_to_int(in_lo));
+        run.f1 = std::min(run.x1, floor_to_int(in_hi));
         if (run.f0 > run.f1) run.f0 = run.x1 + 1, run.f1 = run.x1;
       }
       std::uint8_t* row = coverage_.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(cols);
