@@ -56,25 +56,28 @@ cv::Rect differing_rect(const cv::Mat& a, const cv::Mat& b) {
     y1 = y;
   }
   if (y0 < 0) return {};
-  const int channels = static_cast<int>(a.elemSize());
-  int x0 = a.cols, x1 = -1;
+  // Byte by byte: the first differing byte from the left (right) lies in the first (last) differing pixel.
+  const std::size_t channels = a.elemSize();
+  std::size_t x0 = static_cast<std::size_t>(a.cols);
+  std::size_t x1_end = 0;  // one past the last differing pixel found so far
   for (int y = y0; y <= y1; ++y) {
     const unsigned char* p = a.ptr(y);
     const unsigned char* q = b.ptr(y);
-    for (int x = 0; x < x0; ++x) {
-      if (std::memcmp(p + x * channels, q + x * channels, static_cast<std::size_t>(channels)) != 0) {
-        x0 = x;
+    for (std::size_t i = 0; i < x0 * channels; ++i) {
+      if (p[i] != q[i]) {
+        x0 = i / channels;
         break;
       }
     }
-    for (int x = a.cols - 1; x > x1; --x) {
-      if (std::memcmp(p + x * channels, q + x * channels, static_cast<std::size_t>(channels)) != 0) {
-        x1 = x;
+    for (std::size_t i = row_bytes; i > x1_end * channels; --i) {
+      if (p[i - 1] != q[i - 1]) {
+        x1_end = (i - 1) / channels + 1;
         break;
       }
     }
   }
-  return {x0, y0, x1 - x0 + 1, y1 - y0 + 1};
+  const int x1 = static_cast<int>(x1_end) - 1;
+  return {static_cast<int>(x0), y0, x1 - static_cast<int>(x0) + 1, y1 - y0 + 1};
 }
 
 bool same_pixels(const cv::Mat& a, const cv::Mat& b) {
