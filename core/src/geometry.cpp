@@ -28,19 +28,43 @@ Eigen::Isometry3d Pose2::isometry() const {
   return t;
 }
 
-bool point_in_polygon(const Polygon2& polygon, const Vec2& p) {
-  const std::size_t n = polygon.size();
-  if (n < 3) return false;
+namespace {
+
+// The even-odd crossing test of `p` against the polygon's edges (boundary points may fall either way), and the
+// bounding box of its vertices.
+bool crosses_odd_times(const Polygon2& polygon, const Vec2& p, Vec2& lo, Vec2& hi) {
+  lo = Vec2::Constant(std::numeric_limits<double>::infinity());
+  hi = -lo;
   bool inside = false;
+  const std::size_t n = polygon.size();
   for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
     const Vec2& a = polygon[i];
     const Vec2& b = polygon[j];
+    lo = lo.cwiseMin(a);
+    hi = hi.cwiseMax(a);
     if ((a.y() > p.y()) != (b.y() > p.y())) {
       const double x_cross = (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x();
       if (p.x() < x_cross) inside = !inside;
     }
   }
-  return inside || distance_to_boundary(polygon, p) < 1e-12;
+  return inside;
+}
+
+// True when `p` lies so far outside the box [lo, hi] that its distance to any edge inside the box, rounding
+// included, exceeds the 1e-12 m within which a boundary point counts as inside.
+bool clear_of_box(const Vec2& p, const Vec2& lo, const Vec2& hi) {
+  const double scale = std::max({1.0, p.cwiseAbs().maxCoeff(), lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff()});
+  const double margin = 1e-6 * scale;
+  return (p.array() < lo.array() - margin).any() || (p.array() > hi.array() + margin).any();
+}
+
+}  // namespace
+
+bool point_in_polygon(const Polygon2& polygon, const Vec2& p) {
+  if (polygon.size() < 3) return false;
+  Vec2 lo, hi;
+  if (crosses_odd_times(polygon, p, lo, hi)) return true;
+  return !clear_of_box(p, lo, hi) && distance_to_boundary(polygon, p) < 1e-12;
 }
 
 Vec2 vertex_mean(const Polygon2& polygon) {
@@ -92,7 +116,9 @@ double distance_to_boundary(const Polygon2& polygon, const Vec2& p) {
 
 double signed_distance(const Polygon2& polygon, const Vec2& p) {
   const double d = distance_to_boundary(polygon, p);
-  return point_in_polygon(polygon, p) ? -d : d;
+  Vec2 lo, hi;
+  const bool inside = polygon.size() >= 3 && (crosses_odd_times(polygon, p, lo, hi) || d < 1e-12);
+  return inside ? -d : d;
 }
 
 std::pair<Vec2, Vec2> bounds(const Polygon2& polygon) {

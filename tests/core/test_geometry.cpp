@@ -17,6 +17,23 @@ TEST(Geometry, PointInPolygonSquare) {
   EXPECT_NEAR(signed_distance(square, {2.0, 0.5}), 1.0, 1e-12);
 }
 
+TEST(Geometry, PointsWithinATrillionthOfAnEdgeCountAsInsideFromEverySide) {
+  // Points that miss the crossing test but lie within 1e-12 of the boundary, on and just outside the vertices' box,
+  // at small and large coordinates: inside, as the boundary test says; a little farther: outside.
+  for (const double scale : {1.0, 1e4}) {
+    const Polygon2 square = {{0, 0}, {scale, 0}, {scale, scale}, {0, scale}};
+    for (const Vec2& edge_point : {Vec2(scale, 0.5 * scale), Vec2(0.0, 0.5 * scale), Vec2(0.5 * scale, scale),
+                                   Vec2(0.5 * scale, 0.0), Vec2(scale, scale), Vec2(0.0, 0.0)}) {
+      const Vec2 outward = (edge_point - Vec2(0.5 * scale, 0.5 * scale)).normalized();
+      EXPECT_TRUE(point_in_polygon(square, edge_point)) << edge_point.transpose();
+      EXPECT_TRUE(point_in_polygon(square, edge_point + 5e-13 * outward)) << edge_point.transpose();
+      EXPECT_TRUE(std::signbit(signed_distance(square, edge_point + 5e-13 * outward))) << edge_point.transpose();
+      EXPECT_FALSE(point_in_polygon(square, edge_point + 1e-9 * outward)) << edge_point.transpose();
+      EXPECT_FALSE(point_in_polygon(square, edge_point + 0.25 * scale * outward)) << edge_point.transpose();
+    }
+  }
+}
+
 TEST(Geometry, PoseRoundTrip) {
   const Pose2 pose{0.2, -0.1, std::numbers::pi / 3};
   const Vec2 local(0.05, 0.01);
