@@ -2,20 +2,19 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "freeplay/core/error.hpp"
 
 namespace freeplay::agents {
 namespace {
 
 bool looks_at_other(const GazeTarget& gaze) {
   return gaze.kind == GazeKind::PartnerFace || gaze.kind == GazeKind::Robot;
-}
-
-/// The label a timeline carries on `axis` at time `t` (sorted or not); nullopt when unlabelled.
-std::optional<std::uint8_t> label_at(const ChildTimeline& timeline, Axis axis, double t) {
-  for (const auto& bout : timeline) {
-    if (bout.axis == axis && t >= bout.start && t < bout.stop) return bout.label;
-  }
-  return std::nullopt;
 }
 
 }  // namespace
@@ -256,15 +255,44 @@ ChildTimeline PairCoder::timeline(int player) const {
   return out;
 }
 
+namespace {
+
+// The label `timeline` carries on `axis` at each of the increasing sample `times` (-1 where none): the first bout in
+// the timeline's order whose [start, stop) holds the time, as a scan of the bouts per sample finds it. The bouts are
+// painted last to first, each over the samples from the first at or after its start to the first at or after its
+// stop, so an earlier bout paints over a later one.
+void labels_at(const ChildTimeline& timeline, Axis axis, const std::vector<double>& times,
+               std::vector<std::int16_t>& out) {
+  out.assign(times.size(), -1);
+  for (auto bout = timeline.rbegin(); bout != timeline.rend(); ++bout) {
+    if (bout->axis != axis || std::isnan(bout->start) || std::isnan(bout->stop)) continue;  // NaN holds no time
+    const auto first = std::lower_bound(times.begin(), times.end(), bout->start);
+    const auto last = std::lower_bound(first, times.end(), bout->stop);
+    std::fill(out.begin() + (first - times.begin()), out.begin() + (last - times.begin()),
+              static_cast<std::int16_t>(bout->label));
+  }
+}
+
+}  // namespace
+
 double timeline_agreement(const ChildTimeline& a, const ChildTimeline& b, Axis axis, double end, double step) {
+  if (!(step > 0.0) || !std::isfinite(step) || end == std::numeric_limits<double>::infinity()) {
+    throw InputError(fmt::format("sampling every {} s up to {} s does not end", step, end), "step",
+                     "a positive, finite step and a finite end");
+  }
+  thread_local std::vector<double> times;  // reused: no allocation once a long session has been compared
+  thread_local std::vector<std::int16_t> labels_a;
+  thread_local std::vector<std::int16_t> labels_b;
+  times.clear();
+  for (double t = 0.5 * step; t < end; t += step) times.push_back(t);
+  labels_at(a, axis, times, labels_a);
+  labels_at(b, axis, times, labels_b);
   int same = 0;
   int both = 0;
-  for (double t = 0.5 * step; t < end; t += step) {
-    const auto la = label_at(a, axis, t);
-    const auto lb = label_at(b, axis, t);
-    if (!la || !lb) continue;
+  for (std::size_t k = 0; k < times.size(); ++k) {
+    if (labels_a[k] < 0 || labels_b[k] < 0) continue;
     ++both;
-    if (*la == *lb) ++same;
+    if (labels_a[k] == labels_b[k]) ++same;
   }
   return both > 0 ? static_cast<double>(same) / both : 0.0;
 }

@@ -3,11 +3,15 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <functional>
+#include <limits>
 
 #include "freeplay/agents/calibration.hpp"
 #include "freeplay/agents/coder.hpp"
 #include "freeplay/agents/session.hpp"
+#include "freeplay/core/error.hpp"
+#include "freeplay/core/rng.hpp"
 
 using namespace freeplay;
 using namespace freeplay::agents;
@@ -259,6 +263,58 @@ TEST(Coder, AgreementOfTimelines) {
   const ChildTimeline coded = {{Axis::SocialEngagement, 4, 0.0, 5.0}, {Axis::SocialEngagement, 2, 5.0, 10.0}};
   EXPECT_DOUBLE_EQ(timeline_agreement(coded, internal, Axis::SocialEngagement, 10.0), 0.5);
   EXPECT_DOUBLE_EQ(timeline_agreement(coded, internal, Axis::TaskEngagement, 10.0), 0.0);  // nothing coded on it
+}
+
+// The agreement as a scan of every bout per sample computes it: the first bout in a timeline's order that holds the
+// sample's time gives its label.
+double agreement_by_scanning(const ChildTimeline& a, const ChildTimeline& b, Axis axis, double end, double step) {
+  const auto label_at = [axis](const ChildTimeline& timeline, double t) -> int {
+    for (const auto& bout : timeline) {
+      if (bout.axis == axis && t >= bout.start && t < bout.stop) return bout.label;
+    }
+    return -1;
+  };
+  int same = 0;
+  int both = 0;
+  for (double t = 0.5 * step; t < end; t += step) {
+    const int la = label_at(a, t);
+    const int lb = label_at(b, t);
+    if (la < 0 || lb < 0) continue;
+    ++both;
+    if (la == lb) ++same;
+  }
+  return both > 0 ? static_cast<double>(same) / both : 0.0;
+}
+
+TEST(Coder, AgreementEqualsAScanOfEveryBoutOnOverlappingUnsortedTimelines) {
+  Rng rng(5);
+  const auto random_timeline = [&rng](double end) {
+    ChildTimeline timeline;
+    const auto bouts = rng.uniform_int(0, 60);
+    for (std::int64_t i = 0; i < bouts; ++i) {
+      LabelInterval bout;
+      bout.axis = static_cast<Axis>(rng.uniform_int(0, 2));
+      bout.label = static_cast<std::uint8_t>(rng.uniform_int(0, 4));
+      // Overlapping, unsorted, empty, reversed, on sample times, past the end, and now and then NaN or infinite.
+      bout.start = rng.uniform() < 0.2 ? std::round(rng.uniform(-5.0, end)) + 0.5 : rng.uniform(-5.0, end);
+      bout.stop = bout.start + (rng.uniform() < 0.1 ? -1.0 : rng.uniform(0.0, 0.3 * end));
+      if (rng.uniform() < 0.03) bout.start = std::numeric_limits<double>::quiet_NaN();
+      if (rng.uniform() < 0.03) bout.stop = std::numeric_limits<double>::infinity();
+      timeline.push_back(bout);
+    }
+    return timeline;
+  };
+  for (int trial = 0; trial < 300; ++trial) {
+    const double end = rng.uniform(0.0, 200.0);
+    const double step = trial % 3 == 0 ? 1.0 : rng.uniform(0.05, 3.0);
+    const ChildTimeline a = random_timeline(end);
+    const ChildTimeline b = random_timeline(end);
+    for (const Axis axis : {Axis::TaskEngagement, Axis::SocialEngagement, Axis::SocialAttitude}) {
+      EXPECT_EQ(timeline_agreement(a, b, axis, end, step), agreement_by_scanning(a, b, axis, end, step)) << trial;
+    }
+  }
+  EXPECT_THROW(timeline_agreement({}, {}, Axis::TaskEngagement, 10.0, 0.0), InputError);
+  EXPECT_THROW(timeline_agreement({}, {}, Axis::TaskEngagement, std::numeric_limits<double>::infinity()), InputError);
 }
 
 // An asocial partner (the stand-in of the real `play` node: it never looks at or talks to the child) cannot hold
