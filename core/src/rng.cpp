@@ -52,13 +52,9 @@ double Rng::uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
 
 std::int64_t Rng::uniform_int(std::int64_t lo, std::int64_t hi) {
   if (hi < lo) throw std::invalid_argument("Rng::uniform_int: empty range");
+  // Rejection for an unbiased draw (IndexDraw); span 0 is the full 64-bit range.
   const auto span = static_cast<std::uint64_t>(hi - lo) + 1U;
-  if (span == 0) return static_cast<std::int64_t>((*this)());  // full 64-bit range
-  // Lemire-style rejection for an unbiased draw.
-  const std::uint64_t limit = max() - (max() % span);
-  std::uint64_t x = (*this)();
-  while (x >= limit) x = (*this)();
-  return lo + static_cast<std::int64_t>(x % span);
+  return lo + static_cast<std::int64_t>(IndexDraw(span)(*this));
 }
 
 double Rng::normal(double mean, double sd) {

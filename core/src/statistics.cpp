@@ -46,10 +46,11 @@ Interval bootstrap_mean_ci(const std::vector<double>& values, double confidence,
   Rng rng(seed);
   std::vector<double> means;
   means.reserve(static_cast<std::size_t>(resamples));
-  const auto n = static_cast<std::int64_t>(values.size());
+  const std::size_t n = values.size();
+  const IndexDraw draw(n);  // rng.uniform_int(0, n − 1)
   for (int r = 0; r < resamples; ++r) {
     double sum = 0.0;
-    for (std::int64_t i = 0; i < n; ++i) sum += values[static_cast<std::size_t>(rng.uniform_int(0, n - 1))];
+    for (std::size_t i = 0; i < n; ++i) sum += values[draw(rng)];
     means.push_back(sum / static_cast<double>(n));
   }
   const double alpha = (1.0 - confidence) / 2.0;

@@ -34,13 +34,14 @@ bool in_shard(const std::string& variant_id, int index, int shard_index, int sha
          static_cast<std::uint64_t>(shard_index);
 }
 
-std::string write_summaries(const std::filesystem::path& dir, const Suite& suite, const std::string& title) {
+std::string write_summaries(const std::filesystem::path& dir, const Suite& suite, const std::string& title,
+                            int threads) {
   RunFolder folder(dir);
   std::vector<std::string> order;
   for (const auto& v : suite.variants) order.push_back(v.id);
   RunSummarizer summarizer(order);
   folder.for_each_record([&](const nlohmann::json& record) { summarizer.add(record); });
-  const auto summaries = summarizer.finish();
+  const auto summaries = summarizer.finish(threads);
   const auto markdown = summary_markdown(summaries, title);
   folder.write("summary.csv", summary_csv(summaries));
   folder.write("summary.md", markdown);
@@ -141,7 +142,7 @@ RunReport run_suite(const Suite& suite, const RunOptions& options, const Episode
   folder.finalize(order);
   report.finished = static_cast<int>(folder.record_count()) - report.skipped;
   report.interrupted = stop.load() && report.skipped + report.finished < report.total;
-  write_summaries(folder.dir(), suite, options.title.empty() ? suite.name : options.title);
+  write_summaries(folder.dir(), suite, options.title.empty() ? suite.name : options.title, options.jobs);
   if (first_error) std::rethrow_exception(first_error);
   return report;
 }

@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <future>
+
+#include "freeplay/core/task_pool.hpp"
 
 namespace freeplay::runner {
 
@@ -98,18 +101,32 @@ void RunSummarizer::add(const nlohmann::json& r) {
   }
 }
 
-std::vector<VariantSummary> RunSummarizer::finish() const {
+std::vector<VariantSummary> RunSummarizer::finish(int threads) const {
+  TaskPool pool(threads > 1 ? threads : 0);
+  struct Pending {
+    std::vector<std::future<Summary>> metrics;
+    std::future<Summary> duration;
+  };
   std::vector<VariantSummary> out;
+  std::vector<Pending> pending;
   for (const auto& [summary, values, still_playing] : variants_) {
     if (summary.episodes == 0) continue;
-    auto s = summary;
+    auto& s = out.emplace_back(summary);
+    auto& p = pending.emplace_back();
     std::uint64_t seed = 1;
-    for (const auto& [metric, v] : values) s.metrics.push_back({metric, v.summary(seed++)});
-    s.duration_min = values.at("duration_s").summary(7, 60.0);
+    for (const auto& [metric, v] : values) {
+      s.metrics.push_back({metric, {}});
+      p.metrics.push_back(pool.submit([&v = v, seed] { return v.summary(seed); }));
+      ++seed;
+    }
+    p.duration = pool.submit([&values = values] { return values.at("duration_s").summary(7, 60.0); });
     for (std::size_t i = 0; i < still_playing.size(); ++i) {
       s.still_playing[i] = static_cast<double>(still_playing[i]) / static_cast<double>(summary.episodes);
     }
-    out.push_back(std::move(s));
+  }
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    for (std::size_t k = 0; k < out[i].metrics.size(); ++k) out[i].metrics[k].stats = pending[i].metrics[k].get();
+    out[i].duration_min = pending[i].duration.get();
   }
   return out;
 }

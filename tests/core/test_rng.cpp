@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <set>
 
 #include "freeplay/core/rng.hpp"
@@ -56,6 +58,31 @@ TEST(Rng, UniformIntCoversClosedRange) {
   std::set<std::int64_t> seen;
   for (int i = 0; i < 1000; ++i) seen.insert(rng.uniform_int(-2, 2));
   EXPECT_EQ(seen, (std::set<std::int64_t>{-2, -1, 0, 1, 2}));
+}
+
+TEST(Rng, IndexDrawsAreTheRejectionDrawsOfUniformInt) {
+  // The draw rule written out: reject raw draws at or above the largest multiple of the span, then reduce.
+  const auto by_rule = [](Rng& rng, std::uint64_t span) -> std::uint64_t {
+    if (span == 0) return rng();
+    const std::uint64_t limit = Rng::max() - (Rng::max() % span);
+    std::uint64_t x = rng();
+    while (x >= limit) x = rng();
+    return x % span;
+  };
+  for (const std::uint64_t span : {std::uint64_t{0}, std::uint64_t{1}, std::uint64_t{2}, std::uint64_t{7},
+                                   std::uint64_t{1} << 32, (std::uint64_t{1} << 63) + 1, Rng::max()}) {
+    Rng a(11);
+    Rng b(11);
+    Rng c(11);
+    const freeplay::IndexDraw draw(span);
+    for (int i = 0; i < 2000; ++i) {
+      const std::uint64_t expected = by_rule(a, span);
+      EXPECT_EQ(draw(b), expected) << span;
+      if (span != 0 && span <= static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())) {
+        EXPECT_EQ(static_cast<std::uint64_t>(c.uniform_int(0, static_cast<std::int64_t>(span - 1))), expected) << span;
+      }
+    }
+  }
 }
 
 TEST(Rng, CategoricalFollowsWeights) {

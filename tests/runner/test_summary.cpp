@@ -69,6 +69,20 @@ TEST(Summary, LargeSamplesKeepExactMomentsAndABoundedSampleForTheMedian) {
   EXPECT_EQ(again.summary(1).median, s.median);
 }
 
+TEST(Summary, BootstrapsOnSeveralThreadsGiveTheSameSummaries) {
+  RunSummarizer summarizer({"cc", "cr"});
+  for (int i = 0; i < 60; ++i) {
+    summarizer.add({{"variant", i % 3 == 0 ? "cr" : "cc"}, {"condition", "child-child"}, {"duration_s", 30.0 * i},
+                    {"metrics", {{"a", std::sin(i)}, {"b", {{"c", i * i}, {"d", i % 7}}}}}});
+  }
+  const std::string one = summary_csv(summarizer.finish(1));
+  for (const int threads : {2, 5}) {
+    const auto summaries = summarizer.finish(threads);
+    EXPECT_EQ(summary_csv(summaries), one) << threads;
+    EXPECT_EQ(summary_markdown(summaries, "t"), summary_markdown(summarizer.finish(1), "t")) << threads;
+  }
+}
+
 TEST(Progress, LineCountsEpisodesAndSimulatedHours) {
   ProgressReporter progress(4, false);
   progress.episode_done(1800.0);

@@ -59,6 +59,26 @@ class Rng {
   std::uint64_t state_[4];
 };
 
+/// Draws of Rng::uniform_int(0, span − 1) for many calls with one span, its rejection limit worked out once: the
+/// same draws from the same generator, one 64-bit division fewer each.
+class IndexDraw {
+ public:
+  /// A draw over [0, span − 1]; span 0 stands for the full 64-bit range.
+  explicit IndexDraw(std::uint64_t span)
+      : span_(span), limit_(span == 0 ? Rng::max() : Rng::max() - (Rng::max() % span)) {}
+  /// The next index from `rng`.
+  std::uint64_t operator()(Rng& rng) const {
+    if (span_ == 0) return rng();
+    std::uint64_t x = rng();
+    while (x >= limit_) x = rng();
+    return x % span_;
+  }
+
+ private:
+  std::uint64_t span_;
+  std::uint64_t limit_;
+};
+
 /// One root seed split into independent, named per-component streams (order of requests does not matter).
 class SeedSequence {
  public:

@@ -77,7 +77,9 @@ bool in_shard(const std::string& variant_id, int index, int shard_index, int sha
 RunReport run_suite(const Suite& suite, const RunOptions& options, const EpisodeFunction& run_episode,
                     std::atomic<bool>& stop);
 
-/// Writes summary.csv and summary.md of the run folder's finished episodes; returns the Markdown.
-std::string write_summaries(const std::filesystem::path& dir, const Suite& suite, const std::string& title);
+/// Writes summary.csv and summary.md of the run folder's finished episodes (bootstraps on `threads` threads);
+/// returns the Markdown.
+std::string write_summaries(const std::filesystem::path& dir, const Suite& suite, const std::string& title,
+                            int threads = 1);
 
 }  // namespace freeplay::runner

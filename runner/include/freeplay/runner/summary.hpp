@@ -81,8 +81,9 @@ class RunSummarizer {
   explicit RunSummarizer(const std::vector<std::string>& variant_order);
   /// Takes one episode record.
   void add(const nlohmann::json& record);
-  /// The summaries of the variants with at least one episode, in `variant_order`.
-  std::vector<VariantSummary> finish() const;
+  /// The summaries of the variants with at least one episode, in `variant_order`; the metrics' bootstraps run on
+  /// `threads` threads (each metric has its own seed, so the result does not depend on them).
+  std::vector<VariantSummary> finish(int threads = 1) const;
 
  private:
   struct Variant {
