@@ -15,8 +15,10 @@ struct Segment {
   double length = 0.0;
   double length2 = 0.0;
   cv::Point2d u, n;  // unit direction and normal (zero for a dot)
+  bool end_cap = true;  // whether b's disc belongs to the rows' intervals (see StrokePainter::cover)
 
-  Segment(const cv::Point2d& from, const cv::Point2d& to) : a(from), b(to), ab(to - from) {
+  Segment(const cv::Point2d& from, const cv::Point2d& to, bool with_end_cap)
+      : a(from), b(to), ab(to - from), end_cap(with_end_cap) {
     length2 = ab.dot(ab);
     length = std::sqrt(length2);
     if (length > 0.0) {
@@ -31,6 +33,7 @@ struct Segment {
     lo = std::numeric_limits<double>::infinity();
     hi = -lo;
     for (const cv::Point2d* c : {&a, &b}) {
+      if (c == &b && !end_cap) break;
       const double dy = y - c->y;
       if (std::abs(dy) > t) continue;
       const double h = std::sqrt(t * t - dy * dy);
@@ -97,14 +100,27 @@ void StrokePainter::cover(const std::vector<cv::Point2d>& path, double width_px,
   const double outer = 0.5 * width_px + 0.5;  // coverage > 0 below this distance
   const double inner = 0.5 * width_px - 0.5;  // coverage 1 up to this distance
   const std::size_t segments = path.size() > 1 ? path.size() - 1 : 1;
-  const auto segment_at = [&path](std::size_t k) { return Segment(path[k], path[std::min(k + 1, path.size() - 1)]); };
+  // A pixel whose nearest point on segment k is its end b is at least as near segment k + 1, which starts at b, so
+  // segment k's coverage there never wins: only the last segment's rows take in the disc around its end.
+  const auto segment_at = [&path, segments](std::size_t k) {
+    return Segment(path[k], path[std::min(k + 1, path.size() - 1)], k + 1 == segments);
+  };
   // Each pixel ends with the largest coverage any segment gives it, so the order of the writes does not matter:
   // every segment's fully covered run is filled first, and then a rim pixel that a later segment covers fully
   // needs no distance.
   for (std::size_t k = 0; k < segments; ++k) {
     const Segment segment = segment_at(k);
-    const int y0 = std::max(0, static_cast<int>(std::ceil(std::min(segment.a.y, segment.b.y) - outer)));
-    const int y1 = std::min(rows - 1, static_cast<int>(std::floor(std::max(segment.a.y, segment.b.y) + outer)));
+    double top = std::min(segment.a.y, segment.b.y) - outer;
+    double bottom = std::max(segment.a.y, segment.b.y) + outer;
+    if (!segment.end_cap) {
+      // The rows of a's disc and of the rectangle (its corners are a ± outer·n and b ± outer·n, n.y = u.x), with a
+      // hair of margin: a row beyond them meets the shape at most in a point, where the coverage is 0.
+      const double half = outer * std::abs(segment.u.x) + 1e-9;
+      top = std::max(top, std::min(segment.a.y - outer, std::min(segment.a.y, segment.b.y) - half));
+      bottom = std::min(bottom, std::max(segment.a.y + outer, std::max(segment.a.y, segment.b.y) + half));
+    }
+    const int y0 = std::max(0, static_cast<int>(std::ceil(top)));
+    const int y1 = std::min(rows - 1, static_cast<int>(std::floor(bottom)));
     for (int y = y0; y <= y1; ++y) {
       double lo = 0.0;
       double hi = 0.0;

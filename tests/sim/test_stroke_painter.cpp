@@ -64,7 +64,7 @@ TEST(StrokePainter, EveryPixelGetsTheCoverageOfItsDistanceToThePath) {
   // Random pieces as a child's finger draws them (short segments, some off the image), fractional and integer
   // coordinates, thin and wide strokes: every pixel as the definition says, the rims and the full interiors.
   Rng rng(42);
-  for (int trial = 0; trial < 60; ++trial) {
+  for (int trial = 0; trial < 300; ++trial) {
     std::vector<cv::Point2d> path;
     const int points = static_cast<int>(rng.uniform_int(1, 8));
     cv::Point2d p(rng.uniform(-10.0, 70.0), rng.uniform(-10.0, 50.0));
