@@ -273,8 +273,35 @@ ZoneSegmenter::ZoneSegmenter() {
 
 ZoneSegmenter::~ZoneSegmenter() = default;
 
+namespace {
+
+// For each of H, S and V and each 8-bit value, the colours whose range holds it (bit c for kRanges[c]): a pixel lies
+// in colour c's range exactly when bit c is set in all three of its channels' entries (cv::inRange, per channel).
+using ChannelBits = std::array<std::array<std::uint8_t, 256>, 3>;
+static_assert(kRanges.size() <= 8, "one bit per colour in a byte");
+
+const ChannelBits& channel_bits() {
+  static const ChannelBits bits = [] {
+    ChannelBits b{};
+    for (std::size_t c = 0; c < kRanges.size(); ++c) {
+      for (std::size_t channel = 0; channel < 3; ++channel) {
+        for (int v = 0; v < 256; ++v) {
+          if (kRanges[c].range.lower[channel] <= v && v <= kRanges[c].range.upper[channel]) {
+            b[channel][static_cast<std::size_t>(v)] |= static_cast<std::uint8_t>(1U << c);
+          }
+        }
+      }
+    }
+    return b;
+  }();
+  return bits;
+}
+
+}  // namespace
+
 std::array<cv::Rect, kZoneColours.size()> ZoneSegmenter::update_masks(const cv::Rect& region) {
   constexpr std::size_t kColours = kZoneColours.size();
+  const ChannelBits& bits = channel_bits();
   std::array<cv::Point, kColours> low;
   std::array<cv::Point, kColours> high;
   low.fill({region.x + region.width, region.y + region.height});
@@ -285,11 +312,9 @@ std::array<cv::Rect, kZoneColours.size()> ZoneSegmenter::update_masks(const cv::
     for (std::size_t c = 0; c < kColours; ++c) rows[c] = rasters_[c]->mask().ptr<unsigned char>(y);
     for (int x = region.x; x < region.x + region.width; ++x) {
       const cv::Vec3b p = hsv[x];
+      const unsigned inside = bits[0][p[0]] & bits[1][p[1]] & bits[2][p[2]];
       for (std::size_t c = 0; c < kColours; ++c) {
-        const HsvRange& r = kRanges[c].range;
-        const bool inside = r.lower[0] <= p[0] && p[0] <= r.upper[0] && r.lower[1] <= p[1] && p[1] <= r.upper[1] &&
-                            r.lower[2] <= p[2] && p[2] <= r.upper[2];
-        const unsigned char value = inside ? 255 : 0;  // cv::inRange
+        const unsigned char value = (inside >> c) & 1U ? 255 : 0;  // cv::inRange
         if (rows[c][x] == value) continue;
         rows[c][x] = value;
         low[c] = {std::min(low[c].x, x), std::min(low[c].y, y)};
