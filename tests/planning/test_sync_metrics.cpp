@@ -129,22 +129,27 @@ void robot_like(Rng& rng, std::vector<TimedPose>& finger, std::vector<FollowRepo
   }
 }
 
-TEST(SyncMetrics, MatchesThePlainScansBitForBitOnRobotLikeStreams) {
-  Rng rng(20261125);
+// Compares sync_metrics with the plain scans on `trials` streams written by `make`, which returns the lag range.
+template <typename Make>
+void expect_matches_plain_scans(std::uint64_t seed, int trials, Make make) {
+  Rng rng(seed);
   std::vector<TimedPose> finger;
   std::vector<FollowReport> tips;
-  for (int trial = 0; trial < 400; ++trial) {
-    robot_like(rng, finger, tips);
-    const double max_lag = trial % 4 == 0 ? rng.uniform(0.0, 3.0) : 2.0;
+  for (int trial = 0; trial < trials; ++trial) {
+    const double max_lag = make(rng, trial, finger, tips);
     expect_identical(sync_metrics(finger, tips, max_lag), plain_sync_metrics(finger, tips, max_lag), trial);
   }
 }
 
+TEST(SyncMetrics, MatchesThePlainScansBitForBitOnRobotLikeStreams) {
+  expect_matches_plain_scans(20261125, 400, [](Rng& rng, int trial, auto& finger, auto& tips) {
+    robot_like(rng, finger, tips);
+    return trial % 4 == 0 ? rng.uniform(0.0, 3.0) : 2.0;
+  });
+}
+
 TEST(SyncMetrics, MatchesThePlainScansOnTiesRepeatsAndUnorderedTimes) {
-  Rng rng(7);
-  std::vector<TimedPose> finger;
-  std::vector<FollowReport> tips;
-  for (int trial = 0; trial < 300; ++trial) {
+  expect_matches_plain_scans(7, 300, [](Rng& rng, int trial, auto& finger, auto& tips) {
     const auto n = static_cast<std::size_t>(rng.uniform_int(1, 40));
     finger.clear();
     tips.clear();
@@ -157,22 +162,19 @@ TEST(SyncMetrics, MatchesThePlainScansOnTiesRepeatsAndUnorderedTimes) {
       finger.push_back({t, p});
       tips.push_back({Vec2(0.01 * rng.uniform_int(0, 4), -0.01 * rng.uniform_int(0, 4)), true});
     }
-    expect_identical(sync_metrics(finger, tips, 2.0), plain_sync_metrics(finger, tips, 2.0), trial);
-  }
+    return 2.0;
+  });
 }
 
 TEST(SyncMetrics, MatchesThePlainScansFarFromTheOrigin) {
   // The boxes' margin scales with the coordinates, so rounding at large magnitudes cannot skip the closest segment.
-  Rng rng(99);
-  std::vector<TimedPose> finger;
-  std::vector<FollowReport> tips;
-  for (int trial = 0; trial < 100; ++trial) {
+  expect_matches_plain_scans(99, 100, [](Rng& rng, int, auto& finger, auto& tips) {
     robot_like(rng, finger, tips);
     const Vec2 offset(1e6, -1e6);
     for (auto& pose : finger) pose.position += offset;
     for (auto& tip : tips) tip.fingertip_on_screen += offset;
-    expect_identical(sync_metrics(finger, tips, 2.0), plain_sync_metrics(finger, tips, 2.0), trial);
-  }
+    return 2.0;
+  });
 }
 
 }  // namespace
