@@ -9,6 +9,7 @@
 #include "command_registry.hpp"
 #include "freeplay/core/assets.hpp"
 #include "freeplay/core/error.hpp"
+#include "freeplay/core/memory.hpp"
 
 namespace freeplay::cli {
 
@@ -43,6 +44,7 @@ void add_list_command(CLI::App& program) {
 namespace freeplay::cli {
 
 int run_program(int argc, char** argv) {
+  keep_freed_memory_for_reuse();  // episodes, one after another on each worker, reuse each other's pages
   // Logs go to stderr so that stdout carries only results (tables, JSON) that programs can parse.
   spdlog::set_default_logger(spdlog::stderr_color_mt("freeplay"));
   CLI::App program{"freeplay — simulate, benchmark and record Free-play Sandbox sessions (sandtray, Nao, children)",

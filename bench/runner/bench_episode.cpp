@@ -6,6 +6,7 @@
 
 #include <chrono>
 
+#include "freeplay/core/memory.hpp"
 #include "freeplay/runner/camera_rig.hpp"
 #include "freeplay/runner/episode.hpp"
 
@@ -16,6 +17,7 @@ namespace {
 const SharedModels& models() { return SharedModels::shipped(); }
 
 void run_scenario(benchmark::State& state, const char* file) {
+  freeplay::keep_freed_memory_for_reuse();  // as the freeplay program does at start
   const auto scenario = load_scenario(std::string(FREEPLAY_SCENARIOS_DIR) + "/" + file);
   const std::atomic<bool> stop{false};
   double simulated = 0.0;
