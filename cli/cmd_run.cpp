@@ -11,6 +11,7 @@
 #include "command_registry.hpp"
 #include "episode_observers.hpp"
 #include "run_command.hpp"
+#include "sibling_program.hpp"
 #include "freeplay/core/atomic_file.hpp"
 #include "freeplay/core/error.hpp"
 #include "freeplay/runner/episode.hpp"
@@ -86,6 +87,13 @@ void run_command(const RunCommandOptions& o, bool suite_command) {
   }
   const auto suite = is_suite ? runner::load_suite(o.file, overrides, vocabulary)
                               : runner::single_scenario_suite(o.file, overrides, vocabulary);
+  const ObserverOptions observer_options{o.record};
+  if (!observers_available() && std::any_of(suite.variants.begin(), suite.variants.end(), [&](const auto& v) {
+        return has_observers(v.scenario, observer_options);
+      })) {
+    // Recording or videos: the executable with the recorder and the camera rig runs the same command line.
+    fail_with(exec_sibling_program("freeplay-full", program_arguments()));
+  }
   RunCommandOptions effective = o;
   effective.overrides = overrides;
   const auto identity = run_identity(effective, suite, shard);
@@ -128,7 +136,7 @@ void run_command(const RunCommandOptions& o, bool suite_command) {
 
   g_stop.store(false);
   auto previous_handler = std::signal(SIGINT, on_interrupt);
-  const auto report = runner::run_suite(suite, options, runner::episode_function(models, make_observer_factory({o.record}), out), g_stop);
+  const auto report = runner::run_suite(suite, options, runner::episode_function(models, make_observer_factory(observer_options), out), g_stop);
   std::signal(SIGINT, previous_handler);
 
   const bool complete = report.skipped + report.finished >= report.total;

@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "command_registry.hpp"
+#include "sibling_program.hpp"
 #include "freeplay/core/assets.hpp"
 #include "freeplay/core/error.hpp"
 #include "freeplay/core/memory.hpp"
@@ -24,6 +25,8 @@ std::vector<ListerEntry>& registered_listers() {
 }
 
 namespace {
+
+char** g_arguments = nullptr;
 
 void add_list_command(CLI::App& program) {
   auto* list = program.add_subcommand("list", "List what this installation provides (items, scenarios, …)");
@@ -43,7 +46,10 @@ void add_list_command(CLI::App& program) {
 
 namespace freeplay::cli {
 
+char** program_arguments() { return g_arguments; }
+
 int run_program(int argc, char** argv) {
+  g_arguments = argv;
   keep_freed_memory_for_reuse();  // episodes, one after another on each worker, reuse each other's pages
   // Logs go to stderr so that stdout carries only results (tables, JSON) that programs can parse.
   spdlog::set_default_logger(spdlog::stderr_color_mt("freeplay"));
@@ -63,7 +69,7 @@ int run_program(int argc, char** argv) {
   auto& commands = registered_commands();
   std::stable_sort(commands.begin(), commands.end(), [](const auto& a, const auto& b) { return a.order < b.order; });
   for (const auto& command : commands) command.setup(program);
-  add_list_command(program);
+  if (!registered_listers().empty()) add_list_command(program);
 
   try {
     program.parse(argc, argv);

@@ -26,6 +26,7 @@ pkg_check_modules(OSMESA REQUIRED IMPORTED_TARGET osmesa)
 pkg_check_modules(EGL REQUIRED IMPORTED_TARGET egl)
 find_package(Threads REQUIRED)
 find_package(ZLIB REQUIRED)  # gzip event logs of large runs (runner)
+find_package(PNG REQUIRED)  # item pictures (sim), without OpenCV's image codecs and their start-up cost
 if(FREEPLAY_BUILD_TESTS)
   find_package(GTest REQUIRED)
   include(GoogleTest)

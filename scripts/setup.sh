@@ -18,7 +18,7 @@ packages=(
   python3-gencpp python3-genpy ros-std-msgs ros-geometry-msgs ros-nav-msgs ros-actionlib-msgs python3-rospy
   python3-rosmaster python3-rostopic python3-actionlib python3-tf2-msgs python3-sensor-msgs python3-geometry-msgs
   python3-visualization-msgs python3-actionlib-msgs python3-nav-msgs
-  zlib1g-dev linux-perf valgrind
+  zlib1g-dev libpng-dev linux-perf valgrind
   clang libclang-rt-14-dev
   libopencv-contrib-dev  # ArUco markers for the fiducial localisation (localisation/)
   # the experimenter's web page (web/: websocketpp over Boost.Asio) and its headless-browser test (tests/web/)

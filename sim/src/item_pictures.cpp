@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <png.h>
 
 #include "freeplay/core/assets.hpp"
 #include "freeplay/core/error.hpp"
@@ -257,14 +257,33 @@ cv::Mat draw_item_picture(const ItemSpec& spec, int side_px) {
   return p.bgra();
 }
 
+namespace {
+
+/// A PNG file as 8-bit BGRA (libpng's simplified reader: any bit depth, colour type and palette, transparency as
+/// alpha), or an empty image when the file is not a PNG it can read. libpng alone, not OpenCV's image codecs, so
+/// that the simulation does not load their 140 shared libraries at start-up.
+cv::Mat read_png_bgra(const std::filesystem::path& file) {
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  if (png_image_begin_read_from_file(&image, file.c_str()) == 0) return {};
+  image.format = PNG_FORMAT_BGRA;
+  cv::Mat bgra(static_cast<int>(image.height), static_cast<int>(image.width), CV_8UC4);
+  const auto row_stride = static_cast<png_int_32>(bgra.step[0]);
+  if (png_image_finish_read(&image, nullptr, bgra.data, row_stride, nullptr) == 0) {
+    png_image_free(&image);
+    return {};
+  }
+  return bgra;
+}
+
+}  // namespace
+
 cv::Mat item_picture(const ItemSpec& spec, int side_px) {
   if (!spec.picture.empty()) {
     const std::filesystem::path file = assets_dir() / spec.picture;
     std::error_code ignored;
     if (std::filesystem::is_regular_file(file, ignored)) {
-      cv::Mat loaded = cv::imread(file.string(), cv::IMREAD_UNCHANGED);
-      if (!loaded.empty() && loaded.depth() == CV_8U && (loaded.channels() == 3 || loaded.channels() == 4)) {
-        if (loaded.channels() == 3) cv::cvtColor(loaded, loaded, cv::COLOR_BGR2BGRA);
+      if (const cv::Mat loaded = read_png_bgra(file); !loaded.empty()) {
         // Fit into the square box, keeping the aspect (QML Image PreserveAspectFit), centred.
         const double fit = static_cast<double>(side_px) / std::max(loaded.cols, loaded.rows);
         const cv::Size size(std::max(1, static_cast<int>(std::lround(loaded.cols * fit))),

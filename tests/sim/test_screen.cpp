@@ -2,10 +2,14 @@
 // touches, robot hand, zone outlines, item pictures and bad input.
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <numbers>
 
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "freeplay/core/error.hpp"
@@ -185,6 +189,28 @@ TEST_F(Screen, EveryItemHasItsOwnPicture) {
     pictures.push_back(picture);
   }
   EXPECT_THROW(draw_item_picture(catalogue_.items().front(), 0), InputError);
+}
+
+TEST_F(Screen, AnItemsPngPictureIsFittedIntoItsSquareAndAnUnreadableOneIsDrawn) {
+  const auto dir = std::filesystem::temp_directory_path() / ("freeplay-picture-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  // 40 × 20: the left half opaque orange, the right half half-transparent blue (BGRA).
+  cv::Mat png(20, 40, CV_8UC4, cv::Scalar(0x3e, 0xaf, 0xfc, 255));
+  png(cv::Rect(20, 0, 20, 20)).setTo(cv::Scalar(0xa4, 0x65, 0x34, 128));
+  ASSERT_TRUE(cv::imwrite((dir / "wide.png").string(), png));
+  std::ofstream(dir / "not-a.png") << "not a PNG";
+  ItemSpec spec = catalogue_.items().front();
+  spec.picture = (dir / "wide.png").string();  // an absolute path stays itself under the assets folder
+  const cv::Mat picture = item_picture(spec, 64);
+  ASSERT_EQ(picture.type(), CV_8UC4);
+  ASSERT_EQ(picture.size(), cv::Size(64, 64));
+  EXPECT_EQ(picture.at<cv::Vec4b>(32, 10), cv::Vec4b(0x3e, 0xaf, 0xfc, 255));  // fitted to 64 × 32, centred
+  EXPECT_EQ(picture.at<cv::Vec4b>(32, 54), cv::Vec4b(0xa4, 0x65, 0x34, 128));
+  EXPECT_EQ(picture.at<cv::Vec4b>(10, 32)[3], 0);  // above the fitted picture: transparent
+  EXPECT_EQ(picture.at<cv::Vec4b>(54, 32)[3], 0);
+  spec.picture = (dir / "not-a.png").string();
+  EXPECT_EQ(cv::norm(item_picture(spec, 64), draw_item_picture(spec, 64), cv::NORM_INF), 0.0);
+  std::filesystem::remove_all(dir);
 }
 
 TEST_F(Screen, RenderingIsDeterministic) {

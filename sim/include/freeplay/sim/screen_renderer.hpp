@@ -30,8 +30,9 @@ struct ScreenOverlay {
   bool palette_visible = false;      ///< the drawing palette on the left edge (drawing enabled)
 };
 
-/// The item picture of `spec` as BGRA CV_8UC4, `side_px` square; loaded from `spec.picture` under the assets
-/// folder when it exists, otherwise drawn procedurally from the item's name and colour.
+/// The item picture of `spec` as BGRA CV_8UC4, `side_px` square; loaded from the PNG `spec.picture` under the assets
+/// folder when it exists and reads as a PNG (fitted into the square, aspect kept), otherwise drawn procedurally from
+/// the item's name and colour.
 cv::Mat item_picture(const ItemSpec& spec, int side_px);
 /// Draws an item's picture procedurally (flat cartoon + label) as BGRA CV_8UC4, `side_px` square.
 cv::Mat draw_item_picture(const ItemSpec& spec, int side_px);
