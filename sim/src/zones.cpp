@@ -148,37 +148,71 @@ std::vector<char> rows_read_by_resize(int rows, int height) {
   return needed;
 }
 
-/// Rows of the downsampled image that a bilinear resize of a band of source rows alone gives exactly as the whole
-/// resize does (the same scale, taps inside the band), or all rows when no smaller band does. Checked once on a
-/// random image, so an OpenCV whose rounding differs falls back to whole resizes.
-int resize_band_rows(const cv::Size& source, const cv::Size& small) {
-  thread_local cv::Size checked_source;
-  thread_local cv::Size checked_small;
-  thread_local int checked_rows = 0;
-  if (source == checked_source && small == checked_small) return checked_rows;
-  checked_source = source;
-  checked_small = small;
-  checked_rows = small.height;
-  const int g = std::gcd(source.height, small.height);
-  const int band_rows = small.height / g;
-  const int source_rows = source.height / g;
-  if (band_rows == small.height) return checked_rows;
-  cv::Mat image(source, CV_8UC3);
-  cv::RNG rng(17);
-  rng.fill(image, cv::RNG::UNIFORM, 0, 256);
-  cv::Mat whole_resize;
-  cv::resize(image, whole_resize, small, 0, 0, cv::INTER_LINEAR);
-  cv::Mat banded(small, CV_8UC3);
-  for (int band = 0; band < g; ++band) {
-    cv::Mat target = banded.rowRange(band * band_rows, (band + 1) * band_rows);
-    cv::resize(image.rowRange(band * source_rows, (band + 1) * source_rows), target, target.size(), 0, 0,
-               cv::INTER_LINEAR);
-  }
-  if (cv::norm(whole_resize, banded, cv::NORM_INF) == 0.0) checked_rows = band_rows;
-  return checked_rows;
+}  // namespace
+
+namespace detail {
+namespace {
+
+/// Whether resizing `roi` of `image` alone to `target` (a block of `whole`) gives exactly that block of `whole`.
+bool resizes_alone_exactly(const cv::Mat& image, const cv::Rect& roi, const cv::Mat& whole, const cv::Rect& target) {
+  cv::Mat block;
+  cv::resize(image(roi), block, target.size(), 0, 0, cv::INTER_LINEAR);
+  return cv::norm(whole(target), block, cv::NORM_INF) == 0.0;
 }
 
 }  // namespace
+
+/// The tiles of the downsampled image that a bilinear resize of their own source block gives exactly as the whole
+/// resize does (the same scale, taps inside the block): `band_rows` rows by `tile_cols` columns, or whole rows
+/// (columns) when no smaller tile does. OpenCV's resize computes each axis's source index and fixed-point weight from
+/// the destination index alone, so a block is exact when every single band (tile) is, and every run of tiles is when
+/// the runs that start at the first tile are (a run's weights are those of the run of its length at the start).
+/// Checked once per size on a random image, so an OpenCV whose rounding differs falls back to whole resizes.
+ResizeTiles resize_tiles(const cv::Size& source, const cv::Size& small) {
+  thread_local cv::Size checked_source;
+  thread_local cv::Size checked_small;
+  thread_local ResizeTiles checked;
+  if (source == checked_source && small == checked_small) return checked;
+  checked_source = source;
+  checked_small = small;
+  checked = {small.height, small.width};
+  cv::Mat image(source, CV_8UC3);
+  cv::RNG rng(17);
+  rng.fill(image, cv::RNG::UNIFORM, 0, 256);
+  cv::Mat whole;
+  cv::resize(image, whole, small, 0, 0, cv::INTER_LINEAR);
+  const int row_groups = std::gcd(source.height, small.height);
+  if (row_groups > 1) {
+    const int band_rows = small.height / row_groups;
+    const int source_rows = source.height / row_groups;
+    bool exact = true;
+    for (int band = 0; band < row_groups && exact; ++band) {
+      exact = resizes_alone_exactly(image, cv::Rect(0, band * source_rows, source.width, source_rows), whole,
+                                    cv::Rect(0, band * band_rows, small.width, band_rows));
+    }
+    if (exact) checked.band_rows = band_rows;
+  }
+  const int col_groups = std::gcd(source.width, small.width);
+  if (col_groups > 1) {
+    const int tile_cols = small.width / col_groups;
+    const int source_cols = source.width / col_groups;
+    const int rows = checked.band_rows;
+    const int source_rows = source.height * rows / small.height;
+    bool exact = true;
+    for (int tile = 0; tile < col_groups && exact; ++tile) {
+      exact = resizes_alone_exactly(image, cv::Rect(tile * source_cols, 0, source_cols, source_rows), whole,
+                                    cv::Rect(tile * tile_cols, 0, tile_cols, rows));
+    }
+    for (int tiles = 2; tiles < col_groups && exact; ++tiles) {
+      exact = resizes_alone_exactly(image, cv::Rect(0, 0, tiles * source_cols, source_rows), whole,
+                                    cv::Rect(0, 0, tiles * tile_cols, rows));
+    }
+    if (exact) checked.tile_cols = tile_cols;
+  }
+  return checked;
+}
+
+}  // namespace detail
 
 HsvRange zone_hsv_range(std::string_view colour) { return range_of(colour).range; }
 
@@ -336,7 +370,7 @@ ZoneMap ZoneSegmenter::segment(const cv::Mat& bgr, double metres_per_pixel, std:
   if (hsv_.size() != bgr.size()) {
     hsv_ = cv::Mat::zeros(bgr.size(), CV_8UC3);
     needed_ = rows_read_by_resize(bgr.rows, small_height);
-    band_rows_ = resize_band_rows(bgr.size(), small_size);
+    tiles_ = detail::resize_tiles(bgr.size(), small_size);
     changed = whole;
   }
   const cv::Rect converted = changed ? (*changed & whole) : whole;
@@ -344,26 +378,35 @@ ZoneMap ZoneSegmenter::segment(const cv::Mat& bgr, double metres_per_pixel, std:
   if (small_hsv_.size() != small_size) {
     std::swap(small_hsv_, previous_small_);
     cv::resize(hsv_, small_hsv_, small_size, 0, 0, cv::INTER_LINEAR);
-    resized_rows_ = cv::Range(0, small_size.height);
+    resized_ = cv::Rect(cv::Point(0, 0), small_size);
   } else {
-    // previous_small_ equals small_hsv_ except in the rows the last call resized: those are brought over, and it is
-    // the image before this one again.
+    // previous_small_ equals small_hsv_ except where the last call resized: that is brought over, and it is the
+    // image before this one again.
     if (previous_small_.size() != small_size) {
       small_hsv_.copyTo(previous_small_);
-    } else if (!resized_rows_.empty()) {
-      small_hsv_.rowRange(resized_rows_).copyTo(previous_small_.rowRange(resized_rows_));
+    } else if (!resized_.empty()) {
+      small_hsv_(resized_).copyTo(previous_small_(resized_));
     }
-    // Only the bands of rows whose source rows were converted again.
-    const int bands = small_height / band_rows_;
-    const int source_rows = bgr.rows / bands;
-    const int first_band = converted.y / source_rows;
-    int band = first_band;
-    for (; band < bands && band * source_rows < converted.y + converted.height; ++band) {
-      cv::Mat target = small_hsv_.rowRange(band * band_rows_, (band + 1) * band_rows_);
-      cv::resize(hsv_.rowRange(band * source_rows, (band + 1) * source_rows), target, target.size(), 0, 0,
-                 cv::INTER_LINEAR);
+    // Only the tiles whose source pixels were converted again: the run of tiles across the converted columns, in
+    // each band of rows across the converted rows.
+    resized_ = cv::Rect();
+    if (!converted.empty()) {
+      const int source_rows = bgr.rows * tiles_.band_rows / small_height;
+      const int source_cols = bgr.cols * tiles_.tile_cols / small_size.width;
+      const int first_band = converted.y / source_rows;
+      const int end_band = (converted.y + converted.height - 1) / source_rows + 1;
+      const int first_tile = converted.x / source_cols;
+      const int end_tile = (converted.x + converted.width - 1) / source_cols + 1;
+      const cv::Rect source_cols_run(first_tile * source_cols, 0, (end_tile - first_tile) * source_cols, source_rows);
+      for (int band = first_band; band < end_band; ++band) {
+        cv::Mat target = small_hsv_(cv::Rect(first_tile * tiles_.tile_cols, band * tiles_.band_rows,
+                                             (end_tile - first_tile) * tiles_.tile_cols, tiles_.band_rows));
+        cv::resize(hsv_(source_cols_run + cv::Point(0, band * source_rows)), target, target.size(), 0, 0,
+                   cv::INTER_LINEAR);
+      }
+      resized_ = cv::Rect(first_tile * tiles_.tile_cols, first_band * tiles_.band_rows,
+                          (end_tile - first_tile) * tiles_.tile_cols, (end_band - first_band) * tiles_.band_rows);
     }
-    resized_rows_ = band > first_band ? cv::Range(first_band * band_rows_, band * band_rows_) : cv::Range(0, 0);
   }
   const double scale_x = static_cast<double>(bgr.cols) / kZoneSegmentationWidthPx;
   const double scale_y = static_cast<double>(bgr.rows) / small_height;
@@ -373,12 +416,11 @@ ZoneMap ZoneSegmenter::segment(const cv::Mat& bgr, double metres_per_pixel, std:
   const cv::Rect small_whole(cv::Point(0, 0), small_size);
   cv::Rect region = small_whole;
   if (previous_small_.size() == small_size && rasters_[0]->mask().size() == small_size) {
-    // Outside the rows resized just now the two are equal.
+    // Outside the tiles resized just now the two are equal.
     region = cv::Rect();
-    if (!resized_rows_.empty()) {
-      const cv::Rect differing =
-          differing_rect(small_hsv_.rowRange(resized_rows_), previous_small_.rowRange(resized_rows_));
-      if (!differing.empty()) region = differing + cv::Point(0, resized_rows_.start);
+    if (!resized_.empty()) {
+      const cv::Rect differing = differing_rect(small_hsv_(resized_), previous_small_(resized_));
+      if (!differing.empty()) region = differing + resized_.tl();
     }
   } else {
     for (auto& raster : rasters_) raster->resize(small_size);

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <tuple>
+
 #include <array>
 #include <cmath>
 
@@ -298,6 +300,28 @@ TEST(ZoneSegmenter, ChangedRectanglesGiveTheFromScratchZones) {
   EXPECT_TRUE(same_zones(segment_changes(), ZoneMap::segment(canvas.image(), scale)));
   canvas.clear_strokes();
   EXPECT_TRUE(same_zones(segment_changes(), ZoneMap::segment(canvas.image(), scale)));
+}
+
+// The episode raster (960 × 536 → 200 × 112) downsamples in bands of 14 rows and tiles of 5 columns; any run of tiles
+// in a band then resizes alone exactly as the whole image does. Sizes without common divisors resize whole.
+TEST(ZoneSegmenter, ResizeTilesResizeAloneExactly) {
+  const detail::ResizeTiles tiles = detail::resize_tiles({960, 536}, {200, 112});
+  EXPECT_EQ(tiles.band_rows, 14);
+  EXPECT_EQ(tiles.tile_cols, 5);
+  cv::Mat image(536, 960, CV_8UC3);
+  cv::RNG rng(5);
+  rng.fill(image, cv::RNG::UNIFORM, 0, 256);
+  cv::Mat whole;
+  cv::resize(image, whole, {200, 112}, 0, 0, cv::INTER_LINEAR);
+  for (const auto& [band, first, count] : {std::tuple{0, 0, 40}, {3, 17, 1}, {7, 29, 11}, {5, 39, 1}, {2, 3, 6}}) {
+    cv::Mat block;
+    cv::resize(image(cv::Rect(first * 24, band * 67, count * 24, 67)), block, {count * 5, 14}, 0, 0, cv::INTER_LINEAR);
+    EXPECT_EQ(cv::norm(whole(cv::Rect(first * 5, band * 14, count * 5, 14)), block, cv::NORM_INF), 0.0)
+        << "band " << band << ", tiles " << first << "+" << count;
+  }
+  const detail::ResizeTiles prime = detail::resize_tiles({961, 537}, {200, 112});
+  EXPECT_EQ(prime.band_rows, 112);
+  EXPECT_EQ(prime.tile_cols, 200);
 }
 
 }  // namespace

@@ -56,7 +56,17 @@ struct ZoneSegmenterCounters {
 class ZoneSegmenter;
 namespace detail {
 class ColourRaster;
-}
+
+/// Blocks of a bilinear downsampling that a resize of their own source block gives exactly as the whole resize does.
+struct ResizeTiles {
+  int band_rows = 0;  ///< rows of the downsampled image per band (its height when no band resizes alone)
+  int tile_cols = 0;  ///< columns per tile; a run of whole tiles resizes alone too (its width when none does)
+};
+
+/// The tiles of downsampling `source` to `small` (OpenCV INTER_LINEAR), checked once per thread and size on a random
+/// image against the whole resize.
+ResizeTiles resize_tiles(const cv::Size& source, const cv::Size& small);
+}  // namespace detail
 
 /// The zones of one background image (immutable once built).
 class ZoneMap {
@@ -114,9 +124,9 @@ class ZoneSegmenter {
   cv::Mat hsv_;                 // full-size HSV image; only the rows the downsampling reads are kept up to date
   std::vector<char> needed_;    // rows of hsv_ the downsampling reads
   cv::Mat small_hsv_;           // the downsampled HSV image
-  cv::Mat previous_small_;      // the one before (the masks change only where they differ), except in resized_rows_
-  cv::Range resized_rows_;      // rows of small_hsv_ the last call resized (there previous_small_ is not updated yet)
-  int band_rows_ = 0;           // rows of small_hsv_ resized together (a band of source rows resizes alone exactly)
+  cv::Mat previous_small_;      // the one before (the masks change only where they differ), except in resized_
+  cv::Rect resized_;            // the part of small_hsv_ the last call resized (there previous_small_ is not updated yet)
+  detail::ResizeTiles tiles_;   // blocks of small_hsv_ that a resize of their own source block gives exactly
   Counters counters_;
 };
 
