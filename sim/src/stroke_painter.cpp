@@ -27,43 +27,67 @@ struct Segment {
     }
   }
 
-  // The x-interval of row `y` within distance `t` (a capsule: convex, so the hull of what its two discs and its
-  // rectangle cut from the row). False when the row misses it.
-  bool row_interval(double y, double t, double& lo, double& hi) const {
-    lo = std::numeric_limits<double>::infinity();
-    hi = -lo;
+  // The x-intervals of row `y` within distance `outer` and within distance `inner` (< outer) of the segment (a
+  // capsule: convex, so the hull of what its two discs and its rectangle cut from the row). `has_outer` is false
+  // when the row misses the outer capsule, `has_inner` when it misses the inner one (or `inner` ≤ 0); both
+  // intervals share the row's offsets and the clip along the segment, which do not depend on the distance.
+  struct RowIntervals {
+    double lo, hi, in_lo, in_hi;
+    bool has_outer, has_inner;
+  };
+  RowIntervals row_intervals(double y, double outer, double inner) const {
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    RowIntervals r{kInf, -kInf, kInf, -kInf, false, false};
+    const bool with_inner = inner > 0.0;
     for (const cv::Point2d* c : {&a, &b}) {
       if (c == &b && !end_cap) break;
       const double dy = y - c->y;
-      if (std::abs(dy) > t) continue;
-      const double h = std::sqrt(t * t - dy * dy);
-      lo = std::min(lo, c->x - h);
-      hi = std::max(hi, c->x + h);
+      const double ady = std::abs(dy);
+      if (ady > outer) continue;
+      const double h = std::sqrt(outer * outer - dy * dy);
+      r.lo = std::min(r.lo, c->x - h);
+      r.hi = std::max(r.hi, c->x + h);
+      if (!with_inner || ady > inner) continue;
+      const double h_in = std::sqrt(inner * inner - dy * dy);
+      r.in_lo = std::min(r.in_lo, c->x - h_in);
+      r.in_hi = std::max(r.in_hi, c->x + h_in);
     }
     if (length > 0.0) {
       // Along the segment 0 ≤ (p − a)·u ≤ length and across it |(p − a)·n| ≤ t, each linear in x along the row.
-      double x0 = -std::numeric_limits<double>::infinity();
-      double x1 = -x0;
+      double x0 = -kInf;
+      double x1 = kInf;
       const double dy = y - a.y;
-      const auto clip = [&x0, &x1](double slope, double offset, double low, double high) {
+      const auto clip = [](double& lo, double& hi, double slope, double offset, double low, double high) {
         if (std::abs(slope) < 1e-12) {
-          if (offset < low || offset > high) x0 = x1 + 1.0;  // empty
+          if (offset < low || offset > high) lo = hi + 1.0;  // empty
           return;
         }
         double e0 = (low - offset) / slope;
         double e1 = (high - offset) / slope;
         if (e0 > e1) std::swap(e0, e1);
-        x0 = std::max(x0, e0);
-        x1 = std::min(x1, e1);
+        lo = std::max(lo, e0);
+        hi = std::min(hi, e1);
       };
-      clip(u.x, -a.x * u.x + dy * u.y, 0.0, length);
-      clip(n.x, -a.x * n.x + dy * n.y, -t, t);
+      clip(x0, x1, u.x, -a.x * u.x + dy * u.y, 0.0, length);
+      const double across = -a.x * n.x + dy * n.y;
+      double in_x0 = x0;
+      double in_x1 = x1;
+      clip(x0, x1, n.x, across, -outer, outer);
       if (x0 <= x1) {
-        lo = std::min(lo, x0);
-        hi = std::max(hi, x1);
+        r.lo = std::min(r.lo, x0);
+        r.hi = std::max(r.hi, x1);
+        if (with_inner) {
+          clip(in_x0, in_x1, n.x, across, -inner, inner);
+          if (in_x0 <= in_x1) {
+            r.in_lo = std::min(r.in_lo, in_x0);
+            r.in_hi = std::max(r.in_hi, in_x1);
+          }
+        }
       }
     }
-    return lo <= hi;
+    r.has_outer = r.lo <= r.hi;
+    r.has_inner = r.in_lo <= r.in_hi;
+    return r;
   }
 
   // Distance from `p` to the segment.
@@ -122,19 +146,16 @@ void StrokePainter::cover(const std::vector<cv::Point2d>& path, double width_px,
     const int y0 = std::max(0, static_cast<int>(std::ceil(top)));
     const int y1 = std::min(rows - 1, static_cast<int>(std::floor(bottom)));
     for (int y = y0; y <= y1; ++y) {
-      double lo = 0.0;
-      double hi = 0.0;
-      if (!segment.row_interval(y, outer, lo, hi)) continue;
-      RowRun run{k, y, std::max(0, ceil_to_int(lo)), std::min(cols - 1, floor_to_int(hi)), 0, 0};
+      const auto spans = segment.row_intervals(y, outer, inner);
+      if (!spans.has_outer) continue;
+      RowRun run{k, y, std::max(0, ceil_to_int(spans.lo)), std::min(cols - 1, floor_to_int(spans.hi)), 0, 0};
       if (run.x0 > run.x1) continue;
       // Fully covered pixels [f0, f1] (none when f0 > f1); the rest of [x0, x1] is the anti-aliased rim.
       run.f0 = run.x1 + 1;
       run.f1 = run.x1;
-      double in_lo = 0.0;
-      double in_hi = 0.0;
-      if (inner > 0.0 && segment.row_interval(y, inner, in_lo, in_hi)) {
-        run.f0 = std::max(run.x0, ceil_to_int(in_lo));
-        run.f1 = std::min(run.x1, floor_to_int(in_hi));
+      if (spans.has_inner) {
+        run.f0 = std::max(run.x0, ceil_to_int(spans.in_lo));
+        run.f1 = std::min(run.x1, floor_to_int(spans.in_hi));
         if (run.f0 > run.f1) run.f0 = run.x1 + 1, run.f1 = run.x1;
       }
       std::uint8_t* row = coverage_.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(cols);
