@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <iterator>
 
 #include <opencv2/imgproc.hpp>
 
@@ -310,9 +311,35 @@ bool ColourRaster::refresh_foreground(const cv::Rect& window) {
   return changed;
 }
 
+void contours_of(const cv::Mat& binary, Contours& contours, std::vector<cv::Vec4i>& hierarchy) {
+  // OpenCV pads the image it is given with zeros and scans it in raster order, so the box of the non-zero pixels,
+  // shifted back, has the same contours in the same order as the whole image (all else there is zero).
+  int top = -1;
+  int bottom = -1;
+  int left = binary.cols;
+  int right = -1;
+  for (int y = 0; y < binary.rows; ++y) {
+    const unsigned char* row = binary.ptr<unsigned char>(y);
+    const unsigned char* end = row + binary.cols;
+    const unsigned char* first = std::find_if(row, end, [](unsigned char v) { return v != 0; });
+    if (first == end) continue;
+    const auto last = std::find_if(std::make_reverse_iterator(end), std::make_reverse_iterator(first),
+                                   [](unsigned char v) { return v != 0; });
+    if (top < 0) top = y;
+    bottom = y;
+    left = std::min(left, static_cast<int>(first - row));
+    right = std::max(right, static_cast<int>(last.base() - row) - 1);
+  }
+  contours.clear();
+  hierarchy.clear();
+  if (top < 0) return;
+  const cv::Rect box(left, top, right - left + 1, bottom - top + 1);
+  cv::findContours(binary(box), contours, hierarchy, cv::RETR_TREE, cv::CHAIN_APPROX_TC89_KCOS, box.tl());
+}
+
 void ColourRaster::find_contours(ColourRasterWork& work) {
   ++work.contour_searches;
-  cv::findContours(foreground_, contours_, hierarchy_, cv::RETR_TREE, cv::CHAIN_APPROX_TC89_KCOS);
+  contours_of(foreground_, contours_, hierarchy_);
 }
 
 }  // namespace freeplay::sim::detail

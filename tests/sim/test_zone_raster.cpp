@@ -51,6 +51,24 @@ TEST(ChamferDistances, AreOpenCvsDistanceTransform) {
   }
 }
 
+// Searched in the box of the non-zero pixels, the contours and their tree are those of the whole image: few small
+// blobs anywhere (borders and corners included), many large ones, a full image and an empty one.
+TEST(ContoursOf, AreFindContoursOfTheWholeImage) {
+  std::mt19937 rng(23);
+  for (int trial = 0; trial < 300; ++trial) {
+    cv::Mat mask(kHeight, kWidth, CV_8UC1, cv::Scalar(trial == 0 ? 255 : 0));
+    if (trial > 1) paint_blobs(mask, rng, 1 + trial % 12, 2 + trial % 45);
+    Contours whole;
+    std::vector<cv::Vec4i> whole_tree;
+    cv::findContours(mask, whole, whole_tree, cv::RETR_TREE, cv::CHAIN_APPROX_TC89_KCOS);
+    Contours boxed = {{cv::Point(1, 2)}};  // left over from an earlier call: replaced
+    std::vector<cv::Vec4i> boxed_tree(3);
+    contours_of(mask, boxed, boxed_tree);
+    ASSERT_EQ(boxed, whole) << "trial " << trial;
+    ASSERT_EQ(boxed_tree, whole_tree) << "trial " << trial;
+  }
+}
+
 // Random local edits of every size, including masks that empty out or fill the whole image.
 TEST(ColourRaster, WindowedUpdatesMatchTheWholeImagePipeline) {
   std::mt19937 rng(11);

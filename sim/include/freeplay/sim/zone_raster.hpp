@@ -19,6 +19,10 @@ using Contours = std::vector<std::vector<cv::Point>>;
 /// threshold at a quarter of its maximum, dilation, contours): the reference the incremental pipeline matches.
 Contours reference_contours(const cv::Mat& mask);
 
+/// cv::findContours(binary, contours, hierarchy, RETR_TREE, CHAIN_APPROX_TC89_KCOS) of a CV_8UC1 image, searched only
+/// in the box of its non-zero pixels: the same contours in the same order.
+void contours_of(const cv::Mat& binary, Contours& contours, std::vector<cv::Vec4i>& hierarchy);
+
 /// Chamfer distances (OpenCV's 5×5 L2 mask in 16.16 fixed point) of every pixel of a CV_8UC1 image to its nearest
 /// zero pixel; as cv::distanceTransform(DIST_L2, DIST_MASK_5) computes them before scaling (for tests).
 std::vector<std::uint32_t> chamfer_distances(const cv::Mat& binary);
