@@ -133,6 +133,35 @@ class MaskMemo {
   std::size_t next_ = 0;
 };
 
+/// The HSV conversions of whole images this thread made recently, full-size and downsampled (every episode shows the
+/// same few backgrounds): an image seen before is not converted and downsampled again. Both are pure functions of
+/// the image; the full-size one is shared with the segmenter that recalls it until it writes into it.
+class ConversionMemo {
+ public:
+  struct Entry {
+    cv::Mat bgr;
+    cv::Mat hsv;
+    cv::Mat small_hsv;
+  };
+  const Entry* find(const cv::Mat& bgr) const {
+    for (const auto& e : entries_) {
+      if (same_pixels(e.bgr, bgr)) return &e;
+    }
+    return nullptr;
+  }
+  void add(const cv::Mat& bgr, const cv::Mat& hsv, const cv::Mat& small_hsv) {
+    Entry& e = entries_.size() < kCapacity ? entries_.emplace_back() : entries_[next_++ % kCapacity];
+    e.bgr = bgr.clone();
+    e.hsv = hsv.clone();
+    e.small_hsv = small_hsv.clone();
+  }
+
+ private:
+  static constexpr std::size_t kCapacity = 8;
+  std::vector<Entry> entries_;
+  std::size_t next_ = 0;
+};
+
 /// The source rows a bilinear resize from `rows` to `height` reads. OpenCV computes the source row in single
 /// precision; the rows of both roundings are marked (with a one-row margin).
 std::vector<char> rows_read_by_resize(int rows, int height) {
@@ -286,6 +315,10 @@ void ZoneMap::add_zones(std::string_view colour, const std::vector<std::vector<c
 // around each destination row, so only those rows are converted; the others stay zero and are never read. The
 // result is identical to converting the whole image.
 void ZoneSegmenter::convert_rows(const cv::Mat& bgr, const cv::Rect& region) {
+  if (hsv_shared_) {
+    hsv_ = hsv_.clone();
+    hsv_shared_ = false;
+  }
   for (int y = region.y; y < region.y + region.height;) {
     if (!needed_[static_cast<std::size_t>(y)]) {
       ++y;
@@ -369,15 +402,29 @@ ZoneMap ZoneSegmenter::segment(const cv::Mat& bgr, double metres_per_pixel, std:
   const cv::Size small_size(kZoneSegmentationWidthPx, small_height);
   if (hsv_.size() != bgr.size()) {
     hsv_ = cv::Mat::zeros(bgr.size(), CV_8UC3);
+    hsv_shared_ = false;
     needed_ = rows_read_by_resize(bgr.rows, small_height);
     tiles_ = detail::resize_tiles(bgr.size(), small_size);
     changed = whole;
   }
   const cv::Rect converted = changed ? (*changed & whole) : whole;
-  convert_rows(bgr, converted);
+  // A whole image (a new background) this thread converted before is recalled instead.
+  thread_local ConversionMemo conversions;
+  const ConversionMemo::Entry* recalled = converted == whole ? conversions.find(bgr) : nullptr;
+  if (recalled != nullptr) {
+    hsv_ = recalled->hsv;
+    hsv_shared_ = true;
+    ++counters_.images_recalled;
+  } else {
+    convert_rows(bgr, converted);
+  }
   if (small_hsv_.size() != small_size) {
     std::swap(small_hsv_, previous_small_);
-    cv::resize(hsv_, small_hsv_, small_size, 0, 0, cv::INTER_LINEAR);
+    if (recalled != nullptr) {
+      recalled->small_hsv.copyTo(small_hsv_);
+    } else {
+      cv::resize(hsv_, small_hsv_, small_size, 0, 0, cv::INTER_LINEAR);
+    }
     resized_ = cv::Rect(cv::Point(0, 0), small_size);
   } else {
     // previous_small_ equals small_hsv_ except where the last call resized: that is brought over, and it is the
@@ -387,10 +434,13 @@ ZoneMap ZoneSegmenter::segment(const cv::Mat& bgr, double metres_per_pixel, std:
     } else if (!resized_.empty()) {
       small_hsv_(resized_).copyTo(previous_small_(resized_));
     }
-    // Only the tiles whose source pixels were converted again: the run of tiles across the converted columns, in
-    // each band of rows across the converted rows.
+    // Only the tiles whose source pixels were converted again (all of them for a recalled image): the run of tiles
+    // across the converted columns, in each band of rows across the converted rows.
     resized_ = cv::Rect();
-    if (!converted.empty()) {
+    if (recalled != nullptr) {
+      recalled->small_hsv.copyTo(small_hsv_);
+      resized_ = cv::Rect(cv::Point(0, 0), small_size);
+    } else if (!converted.empty()) {
       const int source_rows = bgr.rows * tiles_.band_rows / small_height;
       const int source_cols = bgr.cols * tiles_.tile_cols / small_size.width;
       const int first_band = converted.y / source_rows;
@@ -408,6 +458,7 @@ ZoneMap ZoneSegmenter::segment(const cv::Mat& bgr, double metres_per_pixel, std:
                           (end_tile - first_tile) * tiles_.tile_cols, (end_band - first_band) * tiles_.band_rows);
     }
   }
+  if (recalled == nullptr && converted == whole) conversions.add(bgr, hsv_, small_hsv_);
   const double scale_x = static_cast<double>(bgr.cols) / kZoneSegmentationWidthPx;
   const double scale_y = static_cast<double>(bgr.rows) / small_height;
   ++counters_.images;

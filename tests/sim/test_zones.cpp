@@ -302,6 +302,35 @@ TEST(ZoneSegmenter, ChangedRectanglesGiveTheFromScratchZones) {
   EXPECT_TRUE(same_zones(segment_changes(), ZoneMap::segment(canvas.image(), scale)));
 }
 
+// A background this thread converted before is recalled, not converted again, and a segmenter that recalled it copies
+// it before its first stroke is converted: strokes on one segmenter never reach what another recalls.
+TEST(ZoneSegmenter, RecalledBackgroundsGiveTheFromScratchZones) {
+  const double scale = kScreenWidthM / 960;
+  DrawingCanvas first_canvas(960);
+  DrawingCanvas second_canvas(960);
+  ZoneSegmenter first;
+  ZoneSegmenter second;
+  const auto segment_changes = [scale](ZoneSegmenter& segmenter, DrawingCanvas& canvas) {
+    const auto zones = segmenter.segment(canvas.image(), scale, canvas.unpublished_rect());
+    canvas.mark_published();
+    EXPECT_TRUE(same_zones(zones, ZoneMap::segment(canvas.image(), scale)));
+  };
+  first_canvas.set_background(BackgroundKind::Tutorial);
+  segment_changes(first, first_canvas);
+  for (int round = 0; round < 2; ++round) {
+    for (auto* canvas : {&first_canvas, &second_canvas}) canvas->set_background(BackgroundKind::FreeplayMap);
+    segment_changes(first, first_canvas);
+    scribble(first_canvas, PaletteColour::Red, Vec2(0.2 + 0.1 * round, -0.15), 0.05);
+    segment_changes(first, first_canvas);
+    segment_changes(second, second_canvas);
+    scribble(second_canvas, PaletteColour::Yellow, Vec2(0.35, -0.2 + 0.05 * round), 0.05);
+    segment_changes(second, second_canvas);
+  }
+  // The map was converted at most once on this thread (by `first` in round 0, unless an earlier test did): recalled
+  // at least three times since.
+  EXPECT_GE(first.counters().images_recalled + second.counters().images_recalled, 3u);
+}
+
 // The episode raster (960 × 536 → 200 × 112) downsamples in bands of 14 rows and tiles of 5 columns; any run of tiles
 // in a band then resizes alone exactly as the whole image does. Sizes without common divisors resize whole.
 TEST(ZoneSegmenter, ResizeTilesResizeAloneExactly) {

@@ -45,6 +45,7 @@ inline constexpr int kZoneSegmentationWidthPx = 200;
 /// Counts of the work a ZoneSegmenter did (for tests and benchmarks).
 struct ZoneSegmenterCounters {
   std::uint64_t images = 0;            ///< images segmented
+  std::uint64_t images_recalled = 0;   ///< whole images whose HSV conversion this thread had made before: reused
   std::uint64_t masks_recomputed = 0;  ///< colour masks segmented (new to this segmenter and its thread's memo)
   std::uint64_t masks_reused = 0;      ///< colour masks unchanged since the last image, or seen before: reused
   std::uint64_t rasters_full = 0;      ///< colour pipelines recomputed on the whole image
@@ -122,6 +123,7 @@ class ZoneSegmenter {
 
   std::array<std::unique_ptr<detail::ColourRaster>, kZoneColours.size()> rasters_;
   cv::Mat hsv_;                 // full-size HSV image; only the rows the downsampling reads are kept up to date
+  bool hsv_shared_ = false;     // hsv_ is a recalled conversion, shared with the thread's memo: copied before writes
   std::vector<char> needed_;    // rows of hsv_ the downsampling reads
   cv::Mat small_hsv_;           // the downsampled HSV image
   cv::Mat previous_small_;      // the one before (the masks change only where they differ), except in resized_
