@@ -13,8 +13,8 @@
 #include "freeplay/sim/zone_raster.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cstring>
-#include <iterator>
 
 #include <opencv2/imgproc.hpp>
 
@@ -134,6 +134,36 @@ void chamfer_window(const cv::Mat& binary, std::vector<std::uint32_t>& distance,
     const std::uint32_t* b = buffer.data() + static_cast<std::ptrdiff_t>(y - window.y + kRing) * ww + kRing;
     std::copy_n(b, window.width, distance.data() + static_cast<std::ptrdiff_t>(y) * cols + window.x);
   }
+}
+
+static_assert(std::endian::native == std::endian::little, "the byte scans read the lowest address as the lowest byte");
+
+/// Index of the first non-zero byte of row[0, n), or n; eight bytes at a time.
+int first_non_zero(const unsigned char* row, int n) {
+  int x = 0;
+  for (; x + 8 <= n; x += 8) {
+    std::uint64_t word;
+    std::memcpy(&word, row + x, 8);
+    if (word != 0) return x + std::countr_zero(word) / 8;  // little-endian: the lowest byte comes first
+  }
+  for (; x < n; ++x) {
+    if (row[x] != 0) return x;
+  }
+  return n;
+}
+
+/// Index of the last non-zero byte of row[0, n) (the row has one); eight bytes at a time.
+int last_non_zero(const unsigned char* row, int n) {
+  int end = n;
+  for (; end >= 8; end -= 8) {
+    std::uint64_t word;
+    std::memcpy(&word, row + end - 8, 8);
+    if (word != 0) return end - 1 - std::countl_zero(word) / 8;
+  }
+  for (; end > 0; --end) {
+    if (row[end - 1] != 0) return end - 1;
+  }
+  return -1;
 }
 
 }  // namespace
@@ -320,15 +350,12 @@ void contours_of(const cv::Mat& binary, Contours& contours, std::vector<cv::Vec4
   int right = -1;
   for (int y = 0; y < binary.rows; ++y) {
     const unsigned char* row = binary.ptr<unsigned char>(y);
-    const unsigned char* end = row + binary.cols;
-    const unsigned char* first = std::find_if(row, end, [](unsigned char v) { return v != 0; });
-    if (first == end) continue;
-    const auto last = std::find_if(std::make_reverse_iterator(end), std::make_reverse_iterator(first),
-                                   [](unsigned char v) { return v != 0; });
+    const int first = first_non_zero(row, binary.cols);
+    if (first == binary.cols) continue;
     if (top < 0) top = y;
     bottom = y;
-    left = std::min(left, static_cast<int>(first - row));
-    right = std::max(right, static_cast<int>(last.base() - row) - 1);
+    left = std::min(left, first);
+    right = std::max(right, last_non_zero(row, binary.cols));
   }
   contours.clear();
   hierarchy.clear();
