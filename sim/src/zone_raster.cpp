@@ -82,20 +82,29 @@ void chamfer_window(const cv::Mat& binary, std::vector<std::uint32_t>& distance,
   const int wh = window.height + 2 * kRing;
   buffer.resize(static_cast<std::size_t>(ww * wh));
   const int cols = binary.cols;
+  // Columns of the buffer inside the image: [inside_from, inside_end); the window's own are [kRing, ww - kRing).
+  const int inside_from = std::max(0, -(window.x - kRing));
+  const int inside_end = std::min(ww, cols - (window.x - kRing));
   for (int by = 0; by < wh; ++by) {
     const int y = window.y - kRing + by;
     std::uint32_t* b = buffer.data() + static_cast<std::ptrdiff_t>(by) * ww;
-    const bool row_inside = y >= 0 && y < binary.rows;
-    for (int bx = 0; bx < ww; ++bx) {
-      const int x = window.x - kRing + bx;
-      if (!row_inside || x < 0 || x >= cols) {
-        b[bx] = kFar;
-      } else if (y >= window.y && y < window.y + window.height && x >= window.x && x < window.x + window.width) {
-        b[bx] = binary.ptr<unsigned char>(y)[x] == 0 ? 0 : kFar;
-      } else {
-        b[bx] = distance[static_cast<std::size_t>(y) * static_cast<std::size_t>(cols) + static_cast<std::size_t>(x)];
-      }
+    if (y < 0 || y >= binary.rows) {
+      std::fill(b, b + ww, kFar);
+      continue;
     }
+    std::fill(b, b + inside_from, kFar);
+    std::fill(b + inside_end, b + ww, kFar);
+    // known(bx): the distance already known at buffer column bx of this row (bx inside the image).
+    const std::uint32_t* row = distance.data() + static_cast<std::ptrdiff_t>(y) * cols;
+    const auto known = [row, &window](int bx) { return row + (window.x - kRing + bx); };
+    if (y < window.y || y >= window.y + window.height) {
+      std::copy(known(inside_from), known(inside_end), b + inside_from);  // a ring row
+      continue;
+    }
+    std::copy(known(inside_from), known(std::max(inside_from, kRing)), b + inside_from);  // the ring left and right
+    std::copy(known(std::min(inside_end, ww - kRing)), known(inside_end), b + std::min(inside_end, ww - kRing));
+    const unsigned char* pixels = binary.ptr<unsigned char>(y) + window.x;
+    for (int x = 0; x < window.width; ++x) b[kRing + x] = pixels[x] == 0 ? 0 : kFar;
   }
   const std::ptrdiff_t s = ww;
   for (int by = kRing; by < wh - kRing; ++by) {
