@@ -53,8 +53,20 @@ Interval bootstrap_mean_ci(const std::vector<double>& values, double confidence,
     for (std::size_t i = 0; i < n; ++i) sum += values[draw(rng)];
     means.push_back(sum / static_cast<double>(n));
   }
+  // The two quantiles of the sorted means without sorting them: the order statistics at and after each quantile's
+  // position, selected (the same values; a mean is never −0, so no tie between zeros of two signs can differ).
+  const auto sorted_quantile = [&means](double q) {
+    const double h = (static_cast<double>(means.size()) - 1.0) * std::clamp(q, 0.0, 1.0);
+    const auto lo = static_cast<std::size_t>(std::floor(h));
+    const auto at = [&means](std::size_t k) { return means.begin() + static_cast<std::ptrdiff_t>(k); };
+    std::nth_element(means.begin(), at(lo), means.end());
+    const double below = means[lo];
+    const double above = lo + 1 < means.size() ? *std::min_element(at(lo + 1), means.end()) : below;
+    return below + (h - static_cast<double>(lo)) * (above - below);
+  };
   const double alpha = (1.0 - confidence) / 2.0;
-  return {quantile(means, alpha), quantile(means, 1.0 - alpha)};
+  const double low = sorted_quantile(alpha);
+  return {low, sorted_quantile(1.0 - alpha)};
 }
 
 Summary summarize(const std::vector<double>& values, std::uint64_t seed) {

@@ -34,6 +34,33 @@ TEST(Statistics, BootstrapCoverageOnSyntheticNormalData) {
   EXPECT_LE(coverage, 0.99);
 }
 
+// The interval's ends are exactly the quantiles (R type 7) of the sorted resample means: sizes with and without ties,
+// integer data (many equal means), one value, and confidences whose positions fall on and between order statistics.
+TEST(Statistics, BootstrapIntervalIsTheQuantilesOfTheSortedMeans) {
+  Rng data(3);
+  for (const std::size_t n : {1u, 2u, 7u, 40u, 105u}) {
+    for (const int resamples : {1, 2, 2000, 2001}) {
+      std::vector<double> values(n);
+      for (auto& v : values) v = n == 7 ? static_cast<double>(data.uniform_int(0, 3)) : data.normal(0.0, 1.0);
+      for (const double confidence : {0.95, 0.5, 0.0}) {
+        const std::uint64_t seed = n * 31 + static_cast<std::uint64_t>(resamples);
+        Rng rng(seed);
+        const IndexDraw draw(n);
+        std::vector<double> means;
+        for (int r = 0; r < resamples; ++r) {
+          double sum = 0.0;
+          for (std::size_t i = 0; i < n; ++i) sum += values[draw(rng)];
+          means.push_back(sum / static_cast<double>(n));
+        }
+        const double alpha = (1.0 - confidence) / 2.0;
+        const auto ci = bootstrap_mean_ci(values, confidence, resamples, seed);
+        EXPECT_EQ(ci.low, quantile(means, alpha)) << n << " values, " << resamples << " resamples, " << confidence;
+        EXPECT_EQ(ci.high, quantile(means, 1.0 - alpha)) << n << " values, " << resamples << " resamples";
+      }
+    }
+  }
+}
+
 TEST(Statistics, SummaryIgnoresNaNAndIsSeeded) {
   const std::vector<double> v = {1, 2, std::nan(""), 3};
   const auto a = summarize(v, 5);
