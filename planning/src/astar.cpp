@@ -86,8 +86,10 @@ GridSearchResult astar_search(const OccupancyGrid& grid, const Cell& start, cons
            static_cast<std::size_t>(c.col + margin + 1);
   };
   const auto cell_of_node = [&](std::size_t node) {
-    return Cell{static_cast<int>(node % static_cast<std::size_t>(stride)) - margin - 1,
-                static_cast<int>(node / static_cast<std::size_t>(stride)) - margin - 1};
+    // Nodes and the stride fit 32 bits (checked below): a 32-bit division is several times quicker than a 64-bit one.
+    const auto small = static_cast<std::uint32_t>(node);
+    const auto row_length = static_cast<std::uint32_t>(stride);
+    return Cell{static_cast<int>(small % row_length) - margin - 1, static_cast<int>(small / row_length) - margin - 1};
   };
   if (count >= std::numeric_limits<std::uint32_t>::max() / 9) {
     throw InputError(fmt::format("an outside margin of {} cells makes the search area too large", margin),

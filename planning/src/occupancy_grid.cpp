@@ -51,8 +51,7 @@ Cell OccupancyGrid::clamp(const Cell& c) {
   return {std::clamp(c.col, 0, kCols - 1), std::clamp(c.row, 0, kRows - 1)};
 }
 
-double OccupancyGrid::step_cost(const Cell& c) const {
-  if (contains(c)) return occupancy(c) + 1.0;
+double OccupancyGrid::outside_step_cost(const Cell& c) const {
   const Cell edge = clamp(c);
   const double distance = std::hypot(c.col - edge.col, c.row - edge.row);
   return occupancy(edge) + 1.0 + kOutsideCostPerCell * distance;

@@ -48,11 +48,12 @@ class OccupancyGrid {
   /// Occupancy of the nearest map cell (used for cells outside the map).
   int occupancy_clamped(const Cell& c) const { return occupancy(clamp(c)); }
   /// A* cost of entering `c`: occupancy + 1 on the map; outside, nearest edge cell cost + 10 × distance in cells.
-  double step_cost(const Cell& c) const;
+  double step_cost(const Cell& c) const { return contains(c) ? occupancy(c) + 1.0 : outside_step_cost(c); }
   /// Sets one map cell's occupancy (for tests and hand-made maps).
   void set_occupancy(const Cell& c, int value);
 
  private:
+  double outside_step_cost(const Cell& c) const;
   static std::size_t index(const Cell& c) {
     return static_cast<std::size_t>(c.row) * kCols + static_cast<std::size_t>(c.col);
   }
