@@ -64,6 +64,7 @@ SimWorld::SimWorld(const Scenario& scenario, const SeedSequence& seeds, const Sh
     : scenario_(scenario), models_(models), tray_(models.catalogue, tray_config(), seeds.stream("sandtray")),
       child_robot_(scenario.condition == "child-robot"),
       robot_gaze_point_(sim::kScreenWidthM / 2, -sim::kScreenHeightM / 2, 0.0) {
+  for (const auto& item : tray_.items()) agent_item_.push_back(agents::item_index(item.name));
   const auto& params = *models.child_params;
   const auto population = population_of(scenario);
   add_child("purple", agents::Seat::Bottom, 0,
@@ -214,9 +215,10 @@ void SimWorld::refresh_seen_zones() {
 void SimWorld::perceive(const ChildSlot& me, const std::vector<sim::ItemState>& items, double t,
                         agents::ChildPerception& seen) const {
   seen.item_count = 0;
-  for (const auto& item : items) {
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const auto& item = items[i];
     if (!item.visible || seen.item_count >= static_cast<int>(agents::kMaxSeenItems)) continue;
-    const int index = agents::item_index(item.name);
+    const int index = agent_item_[i];
     if (index < 0) continue;
     auto& s = seen.items[static_cast<std::size_t>(seen.item_count++)];
     s.item = index;

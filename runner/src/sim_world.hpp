@@ -137,6 +137,7 @@ class SimWorld final : public RobotWorld {
   void refresh_seen_zones();
   /// The tray's items in `items_`, refilled only when the tray has had an input since the last fill.
   const std::vector<sim::ItemState>& current_items();
+  /// What child `me` sees this tick; `items` are the tray's items in tray order (current_items).
   void perceive(const ChildSlot& me, const std::vector<sim::ItemState>& items, double t,
                 agents::ChildPerception& seen) const;
   void apply(ChildSlot& c, double t);
@@ -158,6 +159,7 @@ class SimWorld final : public RobotWorld {
   int coded_robot_item_ = -1;
   std::array<agents::ChildPerception, 2> perceptions_{};
   std::vector<sim::ItemState> items_;    // the tray's items (current_items), reusing their storage
+  std::vector<int> agent_item_;          // the children's index (agents::item_index) of each tray item, in tray order
   std::uint64_t items_input_count_ = ~std::uint64_t{0};  // the tray's input_count when items_ was filled
   std::vector<sim::TouchState> touches_;  // the tray's touches, refilled likewise
   std::array<agents::SeenZone, agents::kMaxSeenZones> seen_zones_{};
