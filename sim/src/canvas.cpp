@@ -41,7 +41,9 @@ DrawingCanvas::DrawingCanvas(int width_px)
       image_(background_.clone()),
       stroke_width_px_(std::max(1, static_cast<int>(std::lround(kStrokeWidthPx * width_px /
                                                                  static_cast<double>(kScreenWidthPx))))),
-      unpublished_(0, 0, image_.cols, image_.rows) {}
+      unpublished_(image_.rows) {
+  unpublished_.add(cv::Rect(0, 0, image_.cols, image_.rows));
+}
 
 void DrawingCanvas::set_background(BackgroundKind kind) {
   cv::Mat fresh = shared_background(kind, image_.cols);  // read only: strokes go into image_
@@ -129,7 +131,7 @@ void DrawingCanvas::paint_path(const std::vector<cv::Point2d>& path, PaletteColo
 
 void DrawingCanvas::touch(const cv::Rect& changed) {
   dirty_ = true;
-  unpublished_ = unpublished_.empty() ? changed : (unpublished_ | changed);
+  unpublished_.add(changed);
   hash_cache_.reset();
 }
 

@@ -418,14 +418,22 @@ struct Sandtray::Impl {
 
   void publish_background() {
     // Only the pixels changed since the last publication are copied and converted again.
-    cv::Rect changed = canvas.unpublished_rect();
+    const double metres_per_pixel = kScreenWidthM / static_cast<double>(canvas.width_px());
     if (published_background.size() != canvas.image().size()) {
       canvas.image().copyTo(published_background);
-      changed = cv::Rect(0, 0, published_background.cols, published_background.rows);
-    } else if (!changed.empty()) {
-      canvas.image()(changed).copyTo(published_background(changed));
+      zone_map = segmenter.segment(published_background, metres_per_pixel);
+    } else {
+      const ChangedPixels& changed = canvas.unpublished();
+      const cv::Rect& box = changed.box();
+      for (int y = box.y; y < box.y + box.height; ++y) {
+        const cv::Range columns = changed.columns(y);
+        if (columns.empty()) continue;
+        const std::size_t offset = static_cast<std::size_t>(columns.start) * 3;
+        std::memcpy(published_background.ptr(y) + offset, canvas.image().ptr(y) + offset,
+                    static_cast<std::size_t>(columns.size()) * 3);
+      }
+      zone_map = segmenter.segment(published_background, metres_per_pixel, changed);
     }
-    zone_map = segmenter.segment(published_background, kScreenWidthM / static_cast<double>(canvas.width_px()), changed);
     canvas.mark_published();
     publish_requested = false;
     ++background_version;

@@ -10,6 +10,7 @@
 #include <string>
 
 #include <opencv2/imgproc.hpp>
+#include <opencv2/imgproc/hal/hal.hpp>
 
 #include "freeplay/core/error.hpp"
 #include "freeplay/sim/zone_raster.hpp"
@@ -314,7 +315,16 @@ void ZoneMap::add_zones(std::string_view colour, const std::vector<std::vector<c
 // BGR → HSV, then a bilinear resize (the real node's order). Bilinear interpolation reads only the two source rows
 // around each destination row, so only those rows are converted; the others stay zero and are never read. The
 // result is identical to converting the whole image.
-void ZoneSegmenter::convert_rows(const cv::Mat& bgr, const cv::Rect& region) {
+cv::Range ZoneSegmenter::converted_columns(int y, const cv::Rect& region, const ChangedPixels* rows) {
+  const cv::Range columns(region.x, region.x + region.width);
+  if (rows == nullptr) return columns;
+  const cv::Range changed = rows->columns(y);
+  const int start = std::max(columns.start, changed.start);
+  const int end = std::min(columns.end, changed.end);
+  return start < end ? cv::Range(start, end) : cv::Range(0, 0);  // cv::Range::empty() is start == end only
+}
+
+void ZoneSegmenter::convert_rows(const cv::Mat& bgr, const cv::Rect& region, const ChangedPixels* rows) {
   if (hsv_shared_) {
     hsv_ = hsv_.clone();
     hsv_shared_ = false;
@@ -324,12 +334,20 @@ void ZoneSegmenter::convert_rows(const cv::Mat& bgr, const cv::Rect& region) {
       ++y;
       continue;
     }
-    int end = y;
-    while (end < region.y + region.height && needed_[static_cast<std::size_t>(end)]) ++end;
-    const cv::Range rows(y, end);
-    const cv::Range cols(region.x, region.x + region.width);
-    cv::Mat target = hsv_(rows, cols);
-    cv::cvtColor(bgr(rows, cols), target, cv::COLOR_BGR2HSV);
+    // A run of needed rows with the same columns is converted in one call.
+    const cv::Range cols = converted_columns(y, region, rows);
+    int end = y + 1;
+    while (end < region.y + region.height && needed_[static_cast<std::size_t>(end)] &&
+           converted_columns(end, region, rows) == cols) {
+      ++end;
+    }
+    if (!cols.empty()) {
+      // OpenCV's BGR → HSV (what cv::cvtColor with COLOR_BGR2HSV runs) without its per-call array checks.
+      const cv::Mat source = bgr(cv::Range(y, end), cols);
+      cv::Mat target = hsv_(cv::Range(y, end), cols);
+      cv::hal::cvtBGRtoHSV(source.data, source.step, target.data, target.step, cols.size(), end - y, CV_8U, 3,
+                           false, false, true);
+    }
     y = end;
   }
 }
@@ -397,6 +415,19 @@ std::array<cv::Rect, kZoneColours.size()> ZoneSegmenter::update_masks(const cv::
 }
 
 ZoneMap ZoneSegmenter::segment(const cv::Mat& bgr, double metres_per_pixel, std::optional<cv::Rect> changed) {
+  return segment_changes(bgr, metres_per_pixel, changed, nullptr);
+}
+
+ZoneMap ZoneSegmenter::segment(const cv::Mat& bgr, double metres_per_pixel, const ChangedPixels& changed) {
+  checked_small_height(bgr, metres_per_pixel);
+  if (changed.box().empty() || changed.row_count() != bgr.rows) {
+    return segment_changes(bgr, metres_per_pixel, changed.box(), nullptr);
+  }
+  return segment_changes(bgr, metres_per_pixel, changed.box(), &changed);
+}
+
+ZoneMap ZoneSegmenter::segment_changes(const cv::Mat& bgr, double metres_per_pixel, std::optional<cv::Rect> changed,
+                                       const ChangedPixels* rows) {
   const int small_height = checked_small_height(bgr, metres_per_pixel);
   const cv::Rect whole(0, 0, bgr.cols, bgr.rows);
   const cv::Size small_size(kZoneSegmentationWidthPx, small_height);
@@ -406,6 +437,7 @@ ZoneMap ZoneSegmenter::segment(const cv::Mat& bgr, double metres_per_pixel, std:
     needed_ = rows_read_by_resize(bgr.rows, small_height);
     tiles_ = detail::resize_tiles(bgr.size(), small_size);
     changed = whole;
+    rows = nullptr;
   }
   const cv::Rect converted = changed ? (*changed & whole) : whole;
   // A whole image (a new background) this thread converted before is recalled instead.
@@ -416,7 +448,7 @@ ZoneMap ZoneSegmenter::segment(const cv::Mat& bgr, double metres_per_pixel, std:
     hsv_shared_ = true;
     ++counters_.images_recalled;
   } else {
-    convert_rows(bgr, converted);
+    convert_rows(bgr, converted, converted == whole ? nullptr : rows);
   }
   if (small_hsv_.size() != small_size) {
     std::swap(small_hsv_, previous_small_);
@@ -445,17 +477,29 @@ ZoneMap ZoneSegmenter::segment(const cv::Mat& bgr, double metres_per_pixel, std:
       const int source_cols = bgr.cols * tiles_.tile_cols / small_size.width;
       const int first_band = converted.y / source_rows;
       const int end_band = (converted.y + converted.height - 1) / source_rows + 1;
-      const int first_tile = converted.x / source_cols;
-      const int end_tile = (converted.x + converted.width - 1) / source_cols + 1;
-      const cv::Rect source_cols_run(first_tile * source_cols, 0, (end_tile - first_tile) * source_cols, source_rows);
       for (int band = first_band; band < end_band; ++band) {
-        cv::Mat target = small_hsv_(cv::Rect(first_tile * tiles_.tile_cols, band * tiles_.band_rows,
-                                             (end_tile - first_tile) * tiles_.tile_cols, tiles_.band_rows));
-        cv::resize(hsv_(source_cols_run + cv::Point(0, band * source_rows)), target, target.size(), 0, 0,
-                   cv::INTER_LINEAR);
+        // The columns converted in this band's needed rows.
+        int from = bgr.cols;
+        int to = 0;
+        const int row_end = std::min((band + 1) * source_rows, converted.y + converted.height);
+        for (int y = std::max(band * source_rows, converted.y); y < row_end; ++y) {
+          if (!needed_[static_cast<std::size_t>(y)]) continue;
+          const cv::Range cols = converted_columns(y, converted, converted == whole ? nullptr : rows);
+          if (cols.empty()) continue;
+          from = std::min(from, cols.start);
+          to = std::max(to, cols.end);
+        }
+        if (from >= to) continue;
+        const int first_tile = from / source_cols;
+        const int end_tile = (to - 1) / source_cols + 1;
+        const cv::Rect tiles(first_tile * tiles_.tile_cols, band * tiles_.band_rows,
+                             (end_tile - first_tile) * tiles_.tile_cols, tiles_.band_rows);
+        cv::Mat target = small_hsv_(tiles);
+        cv::resize(hsv_(cv::Rect(first_tile * source_cols, band * source_rows, (end_tile - first_tile) * source_cols,
+                                 source_rows)),
+                   target, target.size(), 0, 0, cv::INTER_LINEAR);
+        resized_ = resized_.empty() ? tiles : (resized_ | tiles);
       }
-      resized_ = cv::Rect(first_tile * tiles_.tile_cols, first_band * tiles_.band_rows,
-                          (end_tile - first_tile) * tiles_.tile_cols, (end_band - first_band) * tiles_.band_rows);
     }
   }
   if (recalled == nullptr && converted == whole) conversions.add(bgr, hsv_, small_hsv_);

@@ -275,31 +275,48 @@ TEST(ZoneSegmenter, ReusesUnchangedMasksAndMatchesAFullSegmentation) {
   EXPECT_LT(segmenter.counters().masks_recomputed, 6 * kZoneColours.size());
 }
 
-// Told which pixels changed (as the sandtray tells it), the segmenter converts and compares only those rows, and
-// still gives exactly the from-scratch zones: small strokes in different places one after the other, and no change.
+// Told which pixels changed (a rectangle, or row by row as the sandtray tells it), the segmenter converts and
+// compares only those, and still gives exactly the from-scratch zones: small strokes in different places one after
+// the other, no change, and long diagonal strokes.
 TEST(ZoneSegmenter, ChangedRectanglesGiveTheFromScratchZones) {
-  DrawingCanvas canvas(960);
-  canvas.set_background(BackgroundKind::FreeplayMap);
-  const double scale = kScreenWidthM / canvas.width_px();
-  ZoneSegmenter segmenter;
-  const auto segment_changes = [&] {
-    const auto zones = segmenter.segment(canvas.image(), scale, canvas.unpublished_rect());
-    canvas.mark_published();
-    return zones;
-  };
-  EXPECT_TRUE(same_zones(segment_changes(), ZoneMap::segment(canvas.image(), scale)));
-  const std::array<Vec2, 5> centres = {Vec2(0.1, -0.05), Vec2(0.45, -0.28), Vec2(0.3, -0.15), Vec2(0.3, -0.15),
-                                       Vec2(0.12, -0.3)};
-  for (std::size_t k = 0; k < centres.size(); ++k) {
-    scribble(canvas, k % 2 == 0 ? PaletteColour::Red : PaletteColour::Yellow, centres[k], 0.04);
-    EXPECT_TRUE(same_zones(segment_changes(), ZoneMap::segment(canvas.image(), scale))) << "after stroke " << k;
-    EXPECT_TRUE(same_zones(segment_changes(), ZoneMap::segment(canvas.image(), scale))) << "no change after " << k;
+  for (const bool row_by_row : {false, true}) {
+    DrawingCanvas canvas(960);
+    canvas.set_background(BackgroundKind::FreeplayMap);
+    const double scale = kScreenWidthM / canvas.width_px();
+    ZoneSegmenter segmenter;
+    const auto segment_changes = [&] {
+      const auto zones = row_by_row ? segmenter.segment(canvas.image(), scale, canvas.unpublished())
+                                    : segmenter.segment(canvas.image(), scale, canvas.unpublished_rect());
+      canvas.mark_published();
+      return zones;
+    };
+    EXPECT_TRUE(same_zones(segment_changes(), ZoneMap::segment(canvas.image(), scale)));
+    const std::array<Vec2, 5> centres = {Vec2(0.1, -0.05), Vec2(0.45, -0.28), Vec2(0.3, -0.15), Vec2(0.3, -0.15),
+                                         Vec2(0.12, -0.3)};
+    for (std::size_t k = 0; k < centres.size(); ++k) {
+      scribble(canvas, k % 2 == 0 ? PaletteColour::Red : PaletteColour::Yellow, centres[k], 0.04);
+      EXPECT_TRUE(same_zones(segment_changes(), ZoneMap::segment(canvas.image(), scale))) << "after stroke " << k;
+      EXPECT_TRUE(same_zones(segment_changes(), ZoneMap::segment(canvas.image(), scale))) << "no change after " << k;
+    }
+    // Back to the bare background: the pixels the strokes changed change back.
+    scribble(canvas, PaletteColour::Blue, Vec2(0.2, -0.2), 0.04);
+    EXPECT_TRUE(same_zones(segment_changes(), ZoneMap::segment(canvas.image(), scale)));
+    canvas.clear_strokes();
+    EXPECT_TRUE(same_zones(segment_changes(), ZoneMap::segment(canvas.image(), scale)));
+    // Two strokes far apart before one publication: rows between them change nowhere.
+    scribble(canvas, PaletteColour::Purple, Vec2(0.5, -0.05), 0.03);
+    scribble(canvas, PaletteColour::Red, Vec2(0.1, -0.3), 0.03);
+    EXPECT_TRUE(same_zones(segment_changes(), ZoneMap::segment(canvas.image(), scale)));
+    // A long diagonal stroke: its rows' columns are a small part of its box.
+    for (int k = 0; k < 3; ++k) {
+      canvas.begin_stroke(1, PaletteColour::Green, Vec2(0.05 + 0.1 * k, -0.03));
+      for (int step = 1; step <= 20; ++step) {
+        canvas.extend_stroke(1, Vec2(0.05 + 0.1 * k + 0.012 * step, -0.03 - 0.013 * step));
+      }
+      canvas.end_stroke(1);
+      EXPECT_TRUE(same_zones(segment_changes(), ZoneMap::segment(canvas.image(), scale))) << "diagonal " << k;
+    }
   }
-  // Back to the bare background: the pixels the strokes changed change back.
-  scribble(canvas, PaletteColour::Blue, Vec2(0.2, -0.2), 0.04);
-  EXPECT_TRUE(same_zones(segment_changes(), ZoneMap::segment(canvas.image(), scale)));
-  canvas.clear_strokes();
-  EXPECT_TRUE(same_zones(segment_changes(), ZoneMap::segment(canvas.image(), scale)));
 }
 
 // A background this thread converted before is recalled, not converted again, and a segmenter that recalled it copies

@@ -10,6 +10,7 @@
 
 #include "freeplay/core/geometry.hpp"
 #include "freeplay/sim/background.hpp"
+#include "freeplay/sim/changed_pixels.hpp"
 #include "freeplay/sim/screen.hpp"
 #include "freeplay/sim/stroke_painter.hpp"
 
@@ -43,10 +44,12 @@ class DrawingCanvas {
   /// Records that the current image was published.
   void mark_published() {
     dirty_ = false;
-    unpublished_ = {};
+    unpublished_.clear();
   }
   /// Bounding box of every pixel changed since the last mark_published() (empty when none).
-  const cv::Rect& unpublished_rect() const { return unpublished_; }
+  const cv::Rect& unpublished_rect() const { return unpublished_.box(); }
+  /// Every pixel changed since the last mark_published(), row by row.
+  const ChangedPixels& unpublished() const { return unpublished_; }
   /// Fraction of pixels that differ from the bare background (0…1).
   double coverage() const;
   /// 64-bit hash of the image pixels (and background kind); equal images give equal hashes.
@@ -75,7 +78,7 @@ class DrawingCanvas {
   int stroke_width_px_;
   std::map<int, Stroke> strokes_;
   bool dirty_ = true;
-  cv::Rect unpublished_;
+  ChangedPixels unpublished_;
   mutable std::optional<std::uint64_t> hash_cache_;
   StrokePainter painter_;                // paints each smoothed piece once (anti-aliased coverage)
   std::vector<cv::Point2d> piece_;       // the samples of the piece being painted

@@ -13,6 +13,7 @@
 #include <opencv2/core.hpp>
 
 #include "freeplay/core/geometry.hpp"
+#include "freeplay/sim/changed_pixels.hpp"
 
 namespace freeplay::sim {
 
@@ -112,12 +113,20 @@ class ZoneSegmenter {
   /// Same checks and result as ZoneMap::segment. With `changed`, the caller promises that `bgr` differs from the
   /// previous image only inside that rectangle, and only those pixels are converted to HSV again.
   ZoneMap segment(const cv::Mat& bgr, double metres_per_pixel, std::optional<cv::Rect> changed = std::nullopt);
+  /// The same, told row by row which pixels differ from the previous image (an image of `bgr`'s rows): only those
+  /// are converted again, and only the tiles of the downsampled image that read them are resized.
+  ZoneMap segment(const cv::Mat& bgr, double metres_per_pixel, const ChangedPixels& changed);
   /// Work done so far.
   const Counters& counters() const { return counters_; }
 
  private:
-  /// Converts the rows of `bgr` that the bilinear downsampling reads (inside `region`) into hsv_.
-  void convert_rows(const cv::Mat& bgr, const cv::Rect& region);
+  /// Both public segments: `rows`, when given, narrows `changed` row by row.
+  ZoneMap segment_changes(const cv::Mat& bgr, double metres_per_pixel, std::optional<cv::Rect> changed,
+                          const ChangedPixels* rows);
+  /// The columns of row `y` converted again: `region`'s, narrowed to the row's changed ones when `rows` is given.
+  static cv::Range converted_columns(int y, const cv::Rect& region, const ChangedPixels* rows);
+  /// Converts the pixels of `bgr` that the bilinear downsampling reads (inside `region`, narrowed by `rows`) into hsv_.
+  void convert_rows(const cv::Mat& bgr, const cv::Rect& region, const ChangedPixels* rows);
   /// Writes every colour's mask inside `region` of small_hsv_; returns each colour's changed bounding box.
   std::array<cv::Rect, kZoneColours.size()> update_masks(const cv::Rect& region);
 
