@@ -162,17 +162,7 @@ double mean_error_at_lag(const std::vector<TimedPose>& finger, const std::vector
       sum += scan.from_first[i];
       continue;
     }
-    Vec2 p;
-    if (t >= finger.back().t) {
-      p = finger.back().position;
-    } else {
-      while (finger[segment + 1].t <= t) ++segment;
-      const TimedPose& a = finger[segment];
-      const TimedPose& b = finger[segment + 1];
-      const double span = b.t - a.t;
-      p = a.position + (span > 0.0 ? (t - a.t) / span : 1.0) * (b.position - a.position);
-    }
-    sum += (fingertip[i].fingertip_on_screen - p).norm();
+    sum += (fingertip[i].fingertip_on_screen - finger_position_after_start(finger, t, segment)).norm();
     if (may_give_up && (sum + scan.rest_bounds[i + 1]) * (1.0 - kRoundingMargin) >= give_up_sum) return give_up_at;
   }
   return sum / n;

@@ -213,6 +213,17 @@ class MoveExecutor {
 /// its start and the last exactly at its end; throws InputError for a non-positive speed or period.
 std::vector<TimedPose> retime_path(const std::vector<TimedPose>& path, double speed_mps, double period_s);
 
+/// Where the finger stream is at time `t`, later than its first pose: linear between the poses around `t`, the last
+/// pose from its time on. `segment` is a cursor that only moves forward: start it at 0 and pass non-decreasing times.
+inline Vec2 finger_position_after_start(const std::vector<TimedPose>& finger, double t, std::size_t& segment) {
+  if (t >= finger.back().t) return finger.back().position;
+  while (finger[segment + 1].t <= t) ++segment;
+  const TimedPose& a = finger[segment];
+  const TimedPose& b = finger[segment + 1];
+  const double span = b.t - a.t;
+  return a.position + (span > 0.0 ? (t - a.t) / span : 1.0) * (b.position - a.position);
+}
+
 /// Synchronisation metrics of a fingertip stream against the finger stream it followed (equal lengths; the i-th
 /// fingertip was reported when the i-th finger pose was sent, at `finger[i].t`); lags searched in [0, max_lag_s].
 SyncMetrics sync_metrics(const std::vector<TimedPose>& finger, const std::vector<FollowReport>& fingertip,
