@@ -276,13 +276,18 @@ struct Sandtray::Impl {
     return out;
   }
 
-  // Writes item `index`'s published state into `s`, reusing its storage.
-  void state_into(std::size_t index, ItemState& s) const {
+  // Writes item `index`'s published state but its holders into `s`, reusing its storage.
+  void fields_into(std::size_t index, ItemState& s) const {
     const Item& item = items[index];
     s.name = item.spec->name;
     s.pose = pose_of(item);
     s.z = item.z;
     s.visible = item.visible;
+  }
+
+  // Writes item `index`'s published state into `s`, reusing its storage.
+  void state_into(std::size_t index, ItemState& s) const {
+    fields_into(index, s);
     holders_into(static_cast<int>(index), s.holders);
     s.holder = s.holders.empty() ? Holder{} : s.holders.front();
   }
@@ -810,8 +815,22 @@ std::vector<ItemState> Sandtray::items() const {
 }
 
 void Sandtray::items(std::vector<ItemState>& out) const {
-  out.resize(impl_->items.size());
-  for (std::size_t i = 0; i < impl_->items.size(); ++i) impl_->state_into(i, out[i]);
+  const auto& d = *impl_;
+  out.resize(d.items.size());
+  for (std::size_t i = 0; i < d.items.size(); ++i) {
+    d.fields_into(i, out[i]);
+    out[i].holders.clear();
+  }
+  // Every item's holders in one pass over the fingers (ascending), then the robot: each item's list in
+  // holders_into's order.
+  for (int f = 1; f <= kMaxTouches; ++f) {
+    const auto& finger = d.fingers[static_cast<std::size_t>(f)];
+    if (finger.down && finger.mode == Impl::FingerMode::Item) {
+      out[static_cast<std::size_t>(finger.item)].holders.push_back(Holder{Holder::Kind::Finger, f});
+    }
+  }
+  if (d.robot.item >= 0) out[static_cast<std::size_t>(d.robot.item)].holders.push_back(Holder{Holder::Kind::Robot, 0});
+  for (ItemState& s : out) s.holder = s.holders.empty() ? Holder{} : s.holders.front();
 }
 
 ItemState Sandtray::item(const std::string& name) const {

@@ -251,6 +251,10 @@ TEST(Sandtray, ChildGrabbingTheRobotsItemSharesItUntilTheRobotLetsGo) {
   EXPECT_EQ(holders[0], (Holder{Holder::Kind::Finger, 4}));
   EXPECT_EQ(holders[1].kind, Holder::Kind::Robot);
   EXPECT_EQ(tray->item(name).holder, holders[0]);
+  for (const ItemState& state : tray->items()) {  // all items at once: the same holders, in the same order
+    EXPECT_EQ(state.holders, tray->item(state.name).holders) << state.name;
+    EXPECT_EQ(state.holder, tray->item(state.name).holder) << state.name;
+  }
   // Both joints act: the item settles between the robot's target and the child's finger.
   const Vec2 child(p.x() > 0.3 ? p.x() - 0.06 : p.x() + 0.06, p.y());
   tray->touch_move(4, child);
