@@ -1,6 +1,8 @@
 #include "freeplay/sim/stroke_painter.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cstring>
 #include <cmath>
 #include <limits>
 
@@ -187,7 +189,8 @@ void StrokePainter::cover(const std::vector<cv::Point2d>& path, double width_px,
 }
 
 template <typename SourceOf>
-void StrokePainter::blend(cv::Mat& target, const std::vector<cv::Point2d>& path, double width_px, SourceOf source_of) {
+void StrokePainter::blend(cv::Mat& target, const std::vector<cv::Point2d>& path, double width_px,
+                          const SourceOf& source_of) {
   if (target.type() != CV_8UC3) throw InputError("strokes are painted into BGR images", "target", "CV_8UC3");
   if (path.empty()) return;
   cover(path, width_px, target.cols, target.rows);
@@ -199,12 +202,17 @@ void StrokePainter::blend(cv::Mat& target, const std::vector<cv::Point2d>& path,
     for (int x = lo; x <= hi; ++x) {
       const int a = row[x];
       if (a == 0) continue;
-      row[x] = 0;  // the buffer is all 0 again after the call
-      const cv::Vec3b source = source_of(y, x);
       if (a == 255) {
-        pixels[x] = source;
+        // A run of full coverage takes the source as it is.
+        int end = x + 1;
+        while (end <= hi && row[end] == 255) ++end;
+        std::memset(row + x, 0, static_cast<std::size_t>(end - x));  // the buffer is all 0 again after the call
+        source_of.copy_run(y, x, end - x, pixels + x);
+        x = end - 1;
         continue;
       }
+      row[x] = 0;
+      const cv::Vec3b source = source_of(y, x);
       for (int c = 0; c < 3; ++c) {
         pixels[x][c] = static_cast<std::uint8_t>((pixels[x][c] * (255 - a) + source[c] * a + 127) / 255);
       }
@@ -212,8 +220,49 @@ void StrokePainter::blend(cv::Mat& target, const std::vector<cv::Point2d>& path,
   }
 }
 
+namespace {
+
+// One colour everywhere (painting).
+class ColourSource {
+ public:
+  explicit ColourSource(const cv::Vec3b& bgr) : bgr_(bgr) {
+    for (std::size_t i = 0; i < kPatternPixels; ++i) std::memcpy(pattern_.data() + 3 * i, bgr.val, 3);
+  }
+  cv::Vec3b operator()(int /*y*/, int /*x*/) const { return bgr_; }
+  // Writes the colour into `count` pixels from `out`.
+  void copy_run(int /*y*/, int /*x*/, int count, cv::Vec3b* out) const {
+    auto* bytes = reinterpret_cast<std::uint8_t*>(out);
+    auto left = static_cast<std::size_t>(count);
+    for (; left >= kPatternPixels; left -= kPatternPixels, bytes += pattern_.size()) {
+      std::memcpy(bytes, pattern_.data(), pattern_.size());
+    }
+    std::memcpy(bytes, pattern_.data(), 3 * left);
+  }
+
+ private:
+  static constexpr std::size_t kPatternPixels = 16;
+  cv::Vec3b bgr_;
+  std::array<std::uint8_t, 3 * kPatternPixels> pattern_{};
+};
+
+// Each pixel of a BGR image (erasing back to the background).
+class ImageSource {
+ public:
+  explicit ImageSource(const cv::Mat& image) : image_(image) {}
+  cv::Vec3b operator()(int y, int x) const { return image_.at<cv::Vec3b>(y, x); }
+  // Copies the image's pixels (y, x) … (y, x + count − 1) to `out`.
+  void copy_run(int y, int x, int count, cv::Vec3b* out) const {
+    std::memcpy(static_cast<void*>(out), image_.ptr<cv::Vec3b>(y) + x, 3 * static_cast<std::size_t>(count));
+  }
+
+ private:
+  const cv::Mat& image_;
+};
+
+}  // namespace
+
 void StrokePainter::paint(cv::Mat& target, const std::vector<cv::Point2d>& path, double width_px, const cv::Vec3b& bgr) {
-  blend(target, path, width_px, [&bgr](int, int) { return bgr; });
+  blend(target, path, width_px, ColourSource(bgr));
 }
 
 void StrokePainter::erase(cv::Mat& target, const cv::Mat& background, const std::vector<cv::Point2d>& path,
@@ -221,7 +270,7 @@ void StrokePainter::erase(cv::Mat& target, const cv::Mat& background, const std:
   if (background.type() != CV_8UC3 || background.size() != target.size()) {
     throw InputError("erasing needs a BGR background of the target's size", "background", "CV_8UC3, same size");
   }
-  blend(target, path, width_px, [&background](int y, int x) { return background.at<cv::Vec3b>(y, x); });
+  blend(target, path, width_px, ImageSource(background));
 }
 
 }  // namespace freeplay::sim

@@ -21,8 +21,10 @@ class StrokePainter {
   void erase(cv::Mat& target, const cv::Mat& background, const std::vector<cv::Point2d>& path, double width_px);
 
  private:
+  // Blends the stroke's coverage over `target` towards `source_of(y, x)`, a full-coverage run at once through
+  // `source_of.copy_run(y, x, count, pixels)`.
   template <typename SourceOf>
-  void blend(cv::Mat& target, const std::vector<cv::Point2d>& path, double width_px, SourceOf source_of);
+  void blend(cv::Mat& target, const std::vector<cv::Point2d>& path, double width_px, const SourceOf& source_of);
   void cover(const std::vector<cv::Point2d>& path, double width_px, int cols, int rows);
 
   std::vector<std::uint8_t> coverage_;  // rows × cols of the last target, all 0 between calls
