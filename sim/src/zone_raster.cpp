@@ -16,6 +16,7 @@
 #include <bit>
 #include <cstring>
 
+#include <opencv2/core/hal/intrin.hpp>
 #include <opencv2/imgproc.hpp>
 
 namespace freeplay::sim::detail {
@@ -35,11 +36,16 @@ cv::Rect grown(const cv::Rect& r, int by, const cv::Size& size) {
 
 /// dst = minimum (kMin) or maximum of src over the (2r+1)² square clipped to the image, for the pixels of `region`
 /// (OpenCV's erode / dilate with a rectangle and its default border, which never wins). Separable, with the pixels
-/// outside the image set to the neutral value so that the inner loops have a fixed length.
-template <bool kMin>
-void square_filter(const cv::Mat& src, cv::Mat& dst, const cv::Rect& region, int r, std::vector<unsigned char>& rows) {
+/// outside the image set to the neutral value so that the inner loops have a fixed length (`r` fixed: unrolled).
+template <bool kMin, int r>
+void square_filter(const cv::Mat& src, cv::Mat& dst, const cv::Rect& region, std::vector<unsigned char>& rows) {
   constexpr unsigned char kNeutral = kMin ? 255 : 0;
   const auto pick = [](unsigned char a, unsigned char b) { return kMin ? std::min(a, b) : std::max(a, b); };
+#if CV_SIMD128
+  const auto pick16 = [](const cv::v_uint8x16& a, const cv::v_uint8x16& b) {
+    return kMin ? cv::v_min(a, b) : cv::v_max(a, b);
+  };
+#endif
   const int w = region.width;
   const int h = region.height + 2 * r;
   const int line_width = w + 2 * r;
@@ -57,7 +63,15 @@ void square_filter(const cv::Mat& src, cv::Mat& dst, const cv::Rect& region, int
     std::memset(line, kNeutral, static_cast<std::size_t>(line_width));
     std::memcpy(line + (x_first - (region.x - r)), src.ptr<unsigned char>(y) + x_first,
                 static_cast<std::size_t>(x_end - x_first));
-    for (int x = 0; x < w; ++x) {
+    int x = 0;
+#if CV_SIMD128
+    for (; x + 16 <= w; x += 16) {  // sixteen pixels at a time with OpenCV's universal intrinsics
+      cv::v_uint8x16 v = cv::v_load(line + x);
+      for (int k = 1; k <= 2 * r; ++k) v = pick16(v, cv::v_load(line + x + k));
+      cv::v_store(out + x, v);
+    }
+#endif
+    for (; x < w; ++x) {
       unsigned char v = line[x];
       for (int k = 1; k <= 2 * r; ++k) v = pick(v, line[x + k]);
       out[x] = v;
@@ -65,10 +79,19 @@ void square_filter(const cv::Mat& src, cv::Mat& dst, const cv::Rect& region, int
   }
   for (int i = 0; i < region.height; ++i) {
     unsigned char* d = dst.ptr<unsigned char>(region.y + i) + region.x;
-    std::memcpy(d, rows.data() + static_cast<std::ptrdiff_t>(i) * w, static_cast<std::size_t>(w));
-    for (int k = 1; k <= 2 * r; ++k) {
-      const unsigned char* row = rows.data() + static_cast<std::ptrdiff_t>(i + k) * w;
-      for (int x = 0; x < w; ++x) d[x] = pick(d[x], row[x]);
+    const unsigned char* first = rows.data() + static_cast<std::ptrdiff_t>(i) * w;
+    int x = 0;
+#if CV_SIMD128
+    for (; x + 16 <= w; x += 16) {
+      cv::v_uint8x16 v = cv::v_load(first + x);
+      for (int k = 1; k <= 2 * r; ++k) v = pick16(v, cv::v_load(first + static_cast<std::ptrdiff_t>(k) * w + x));
+      cv::v_store(d + x, v);
+    }
+#endif
+    for (; x < w; ++x) {
+      unsigned char v = first[x];
+      for (int k = 1; k <= 2 * r; ++k) v = pick(v, first[static_cast<std::ptrdiff_t>(k) * w + x]);
+      d[x] = v;
     }
   }
 }
@@ -228,10 +251,10 @@ void ColourRaster::update(const cv::Rect& changed_in, ColourRasterWork& work) {
     return;
   }
   // The opened and dilated mask, only where the change reaches; then what really changed.
-  square_filter<true>(mask_, eroded_, grown(changed, 8, size), 2, scratch_);
-  square_filter<false>(eroded_, opened_, grown(changed, 6, size), 2, scratch_);
+  square_filter<true, 2>(mask_, eroded_, grown(changed, 8, size), scratch_);
+  square_filter<false, 2>(eroded_, opened_, grown(changed, 6, size), scratch_);
   const cv::Rect reach = grown(changed, 5, size);
-  square_filter<false>(opened_, next_, reach, 1, scratch_);
+  square_filter<false, 1>(opened_, next_, reach, scratch_);
   int x0 = size.width, y0 = size.height, x1 = -1, y1 = -1;
   for (int y = reach.y; y < reach.y + reach.height; ++y) {
     unsigned char* d = dilated_.ptr<unsigned char>(y);
@@ -257,9 +280,9 @@ void ColourRaster::update(const cv::Rect& changed_in, ColourRasterWork& work) {
 void ColourRaster::recompute_all(ColourRasterWork& work) {
   ++work.rasters_full;
   const cv::Rect whole(cv::Point(0, 0), mask_.size());
-  square_filter<true>(mask_, eroded_, whole, 2, scratch_);
-  square_filter<false>(eroded_, opened_, whole, 2, scratch_);
-  square_filter<false>(opened_, dilated_, whole, 1, scratch_);
+  square_filter<true, 2>(mask_, eroded_, whole, scratch_);
+  square_filter<false, 2>(eroded_, opened_, whole, scratch_);
+  square_filter<false, 1>(opened_, dilated_, whole, scratch_);
   nonzero_ = cv::countNonZero(dilated_);
   valid_ = true;
   distance_valid_ = false;
@@ -337,7 +360,7 @@ bool ColourRaster::refresh_foreground(const cv::Rect& window) {
     for (int x = window.x; x < window.x + window.width; ++x) c[x] = d[x] >= first ? 255 : 0;
   }
   const cv::Rect out = grown(window, 2, size);
-  square_filter<false>(core_, next_, out, 2, scratch_);
+  square_filter<false, 2>(core_, next_, out, scratch_);
   bool changed = false;
   for (int y = out.y; y < out.y + out.height; ++y) {
     unsigned char* f = foreground_.ptr<unsigned char>(y) + out.x;
