@@ -426,7 +426,8 @@ struct Sandtray::Impl {
     const double metres_per_pixel = kScreenWidthM / static_cast<double>(canvas.width_px());
     if (published_background.size() != canvas.image().size()) {
       canvas.image().copyTo(published_background);
-      zone_map = segmenter.segment(published_background, metres_per_pixel);
+      const cv::Rect whole(0, 0, published_background.cols, published_background.rows);
+      zone_map = segmenter.segment(published_background, metres_per_pixel, whole);  // a new background
     } else {
       const ChangedPixels& changed = canvas.unpublished();
       const cv::Rect& box = changed.box();

@@ -431,6 +431,9 @@ ZoneMap ZoneSegmenter::segment_changes(const cv::Mat& bgr, double metres_per_pix
   const int small_height = checked_small_height(bgr, metres_per_pixel);
   const cv::Rect whole(0, 0, bgr.cols, bgr.rows);
   const cv::Size small_size(kZoneSegmentationWidthPx, small_height);
+  // A whole image reported as changed is a new background, which recurs (every episode shows the same few): it is
+  // recalled from, or kept in, the thread's memo. An image segmented without a report is not kept.
+  const bool new_background = changed.has_value() && (*changed & whole) == whole;
   if (hsv_.size() != bgr.size()) {
     hsv_ = cv::Mat::zeros(bgr.size(), CV_8UC3);
     hsv_shared_ = false;
@@ -440,9 +443,9 @@ ZoneMap ZoneSegmenter::segment_changes(const cv::Mat& bgr, double metres_per_pix
     rows = nullptr;
   }
   const cv::Rect converted = changed ? (*changed & whole) : whole;
-  // A whole image (a new background) this thread converted before is recalled instead.
+  // A new background this thread converted before is recalled instead.
   thread_local ConversionMemo conversions;
-  const ConversionMemo::Entry* recalled = converted == whole ? conversions.find(bgr) : nullptr;
+  const ConversionMemo::Entry* recalled = new_background ? conversions.find(bgr) : nullptr;
   if (recalled != nullptr) {
     hsv_ = recalled->hsv;
     hsv_shared_ = true;
@@ -502,7 +505,7 @@ ZoneMap ZoneSegmenter::segment_changes(const cv::Mat& bgr, double metres_per_pix
       }
     }
   }
-  if (recalled == nullptr && converted == whole) conversions.add(bgr, hsv_, small_hsv_);
+  if (recalled == nullptr && new_background) conversions.add(bgr, hsv_, small_hsv_);
   const double scale_x = static_cast<double>(bgr.cols) / kZoneSegmentationWidthPx;
   const double scale_y = static_cast<double>(bgr.rows) / small_height;
   ++counters_.images;

@@ -111,7 +111,8 @@ class ZoneSegmenter {
   ZoneSegmenter& operator=(const ZoneSegmenter&) = delete;
 
   /// Same checks and result as ZoneMap::segment. With `changed`, the caller promises that `bgr` differs from the
-  /// previous image only inside that rectangle, and only those pixels are converted to HSV again.
+  /// previous image only inside that rectangle, and only those pixels are converted to HSV again; a `changed` that
+  /// covers the whole image marks a new background, whose conversion this thread keeps and recalls when it recurs.
   ZoneMap segment(const cv::Mat& bgr, double metres_per_pixel, std::optional<cv::Rect> changed = std::nullopt);
   /// The same, told row by row which pixels differ from the previous image (an image of `bgr`'s rows): only those
   /// are converted again, and only the tiles of the downsampled image that read them are resized.
