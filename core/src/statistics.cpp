@@ -23,13 +23,31 @@ double sample_sd(const std::vector<double>& values) {
   return std::sqrt(ss / static_cast<double>(values.size() - 1));
 }
 
+namespace {
+
+// Where quantile `q` (R type 7) of `n` sorted values lies: the index at or below it and the fraction of the way to the
+// next value.
+struct QuantilePosition {
+  std::size_t below;
+  double fraction;
+};
+
+QuantilePosition quantile_position(std::size_t n, double q) {
+  const double h = (static_cast<double>(n) - 1.0) * std::clamp(q, 0.0, 1.0);
+  const auto below = static_cast<std::size_t>(std::floor(h));
+  return {below, h - static_cast<double>(below)};
+}
+
+// The quantile between the sorted values at the position and after it (the same value at the last one).
+double interpolate(const QuantilePosition& p, double at, double after) { return at + p.fraction * (after - at); }
+
+}  // namespace
+
 double quantile(std::vector<double> values, double q) {
   if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
   std::sort(values.begin(), values.end());
-  const double h = (static_cast<double>(values.size()) - 1.0) * std::clamp(q, 0.0, 1.0);
-  const auto lo = static_cast<std::size_t>(std::floor(h));
-  const auto hi = std::min(lo + 1, values.size() - 1);
-  return values[lo] + (h - static_cast<double>(lo)) * (values[hi] - values[lo]);
+  const QuantilePosition p = quantile_position(values.size(), q);
+  return interpolate(p, values[p.below], values[std::min(p.below + 1, values.size() - 1)]);
 }
 
 double median(const std::vector<double>& values) { return quantile(values, 0.5); }
@@ -56,13 +74,11 @@ Interval bootstrap_mean_ci(const std::vector<double>& values, double confidence,
   // The two quantiles of the sorted means without sorting them: the order statistics at and after each quantile's
   // position, selected (the same values; a mean is never −0, so no tie between zeros of two signs can differ).
   const auto sorted_quantile = [&means](double q) {
-    const double h = (static_cast<double>(means.size()) - 1.0) * std::clamp(q, 0.0, 1.0);
-    const auto lo = static_cast<std::size_t>(std::floor(h));
+    const QuantilePosition p = quantile_position(means.size(), q);
     const auto at = [&means](std::size_t k) { return means.begin() + static_cast<std::ptrdiff_t>(k); };
-    std::nth_element(means.begin(), at(lo), means.end());
-    const double below = means[lo];
-    const double above = lo + 1 < means.size() ? *std::min_element(at(lo + 1), means.end()) : below;
-    return below + (h - static_cast<double>(lo)) * (above - below);
+    std::nth_element(means.begin(), at(p.below), means.end());
+    const double below = means[p.below];
+    return interpolate(p, below, p.below + 1 < means.size() ? *std::min_element(at(p.below + 1), means.end()) : below);
   };
   const double alpha = (1.0 - confidence) / 2.0;
   const double low = sorted_quantile(alpha);

@@ -312,9 +312,6 @@ void ZoneMap::add_zones(std::string_view colour, const std::vector<std::vector<c
   }
 }
 
-// BGR → HSV, then a bilinear resize (the real node's order). Bilinear interpolation reads only the two source rows
-// around each destination row, so only those rows are converted; the others stay zero and are never read. The
-// result is identical to converting the whole image.
 cv::Range ZoneSegmenter::converted_columns(int y, const cv::Rect& region, const ChangedPixels* rows) {
   const cv::Range columns(region.x, region.x + region.width);
   if (rows == nullptr) return columns;
@@ -324,6 +321,9 @@ cv::Range ZoneSegmenter::converted_columns(int y, const cv::Rect& region, const 
   return start < end ? cv::Range(start, end) : cv::Range(0, 0);  // cv::Range::empty() is start == end only
 }
 
+// BGR → HSV, then a bilinear resize (the real node's order). Bilinear interpolation reads only the two source rows
+// around each destination row, so only those rows are converted; the others stay zero and are never read. The
+// result is identical to converting the whole image.
 void ZoneSegmenter::convert_rows(const cv::Mat& bgr, const cv::Rect& region, const ChangedPixels* rows) {
   if (hsv_shared_) {
     hsv_ = hsv_.clone();
@@ -419,11 +419,8 @@ ZoneMap ZoneSegmenter::segment(const cv::Mat& bgr, double metres_per_pixel, std:
 }
 
 ZoneMap ZoneSegmenter::segment(const cv::Mat& bgr, double metres_per_pixel, const ChangedPixels& changed) {
-  checked_small_height(bgr, metres_per_pixel);
-  if (changed.box().empty() || changed.row_count() != bgr.rows) {
-    return segment_changes(bgr, metres_per_pixel, changed.box(), nullptr);
-  }
-  return segment_changes(bgr, metres_per_pixel, changed.box(), &changed);
+  // Rows of another image than `bgr` say nothing about its rows: then only the box is used.
+  return segment_changes(bgr, metres_per_pixel, changed.box(), changed.row_count() == bgr.rows ? &changed : nullptr);
 }
 
 ZoneMap ZoneSegmenter::segment_changes(const cv::Mat& bgr, double metres_per_pixel, std::optional<cv::Rect> changed,
@@ -443,6 +440,7 @@ ZoneMap ZoneSegmenter::segment_changes(const cv::Mat& bgr, double metres_per_pix
     rows = nullptr;
   }
   const cv::Rect converted = changed ? (*changed & whole) : whole;
+  if (converted == whole) rows = nullptr;  // every needed pixel is converted again
   // A new background this thread converted before is recalled instead.
   thread_local ConversionMemo conversions;
   const ConversionMemo::Entry* recalled = new_background ? conversions.find(bgr) : nullptr;
@@ -451,7 +449,7 @@ ZoneMap ZoneSegmenter::segment_changes(const cv::Mat& bgr, double metres_per_pix
     hsv_shared_ = true;
     ++counters_.images_recalled;
   } else {
-    convert_rows(bgr, converted, converted == whole ? nullptr : rows);
+    convert_rows(bgr, converted, rows);
   }
   if (small_hsv_.size() != small_size) {
     std::swap(small_hsv_, previous_small_);
@@ -487,7 +485,7 @@ ZoneMap ZoneSegmenter::segment_changes(const cv::Mat& bgr, double metres_per_pix
         const int row_end = std::min((band + 1) * source_rows, converted.y + converted.height);
         for (int y = std::max(band * source_rows, converted.y); y < row_end; ++y) {
           if (!needed_[static_cast<std::size_t>(y)]) continue;
-          const cv::Range cols = converted_columns(y, converted, converted == whole ? nullptr : rows);
+          const cv::Range cols = converted_columns(y, converted, rows);
           if (cols.empty()) continue;
           from = std::min(from, cols.start);
           to = std::max(to, cols.end);
