@@ -120,6 +120,7 @@ struct ActionResult {
 struct PolicyContext {
   std::string robot_seat = "yellow";  ///< the robot replaces the yellow child
   std::vector<std::string> item_names;  ///< every item of the game
+  int episode_index = 0;                ///< index of the episode in its run (a yoked policy replays that episode)
 };
 
 /// A robot play policy, called at the decision rate (10 Hz) by the episode loop.
@@ -136,6 +137,9 @@ class PlayPolicy {
   virtual void on_result(const ActionResult& result) { (void)result; }
   /// True when the policy uses perceived children (an asocial policy does not: perception can be skipped).
   virtual bool perceives_children() const { return false; }
+  /// Checks, before a run starts, that the policy can play episodes 0 … `episodes` − 1 (a yoked policy needs its
+  /// source's episodes); throws InputError naming what is missing.
+  virtual void check_run(int episodes) const { (void)episodes; }
 };
 
 /// Builds a policy from its validated parameters.
