@@ -10,6 +10,7 @@
 
 #include "freeplay/core/atomic_file.hpp"
 #include "freeplay/core/error.hpp"
+#include "freeplay/policies/play_policy.hpp"
 #include "freeplay/runner/episode.hpp"
 #include "freeplay/runner/run_folder.hpp"
 #include "freeplay/runner/suite.hpp"
@@ -49,7 +50,9 @@ void run(const fs::path& scenario, const fs::path& out, int jobs, EventsOutput e
   o.progress = false;
   o.events = events;
   std::atomic<bool> stop{false};
-  run_suite(single_scenario_suite(scenario), o, episode_function(SharedModels::shipped()), stop);
+  ScenarioVocabulary registered;  // the default vocabulary predates `yoked`: take the registry's names
+  registered.policies = policies::policy_names();
+  run_suite(single_scenario_suite(scenario, {}, registered), o, episode_function(SharedModels::shipped()), stop);
 }
 
 /// The robot's actions of one event log as "free-play t | type | data" lines, up to free-play time `until`
