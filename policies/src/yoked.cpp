@@ -1,6 +1,8 @@
 // `yoked`: the yoked control of contingency research. Against the child of episode k it replays the robot actions
-// (content and free-play time) that another run's policy took in its episode k, read from that run's event logs:
-// the robot is exactly as active, but nothing it does depends on this child. docs/validity.md.
+// (content and free-play time) that another run's policy took in its episode (k + offset) mod N, read from that
+// run's event logs: the robot is as active, but nothing it does depends on this child. The offset defaults to 1
+// because runs with the same seed have the same children: replaying a child's own session to the same
+// deterministic child reproduces that session exactly (offset 0), contingency included. docs/validity.md.
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -31,6 +33,9 @@ std::shared_ptr<const Schema> yoked_schema() {
   return Schema::map({
       required("from", Schema::string(), "run folder of the source run (relative to the working folder)"),
       optional("variant", Schema::string(), "variant of the source run (required when it holds several)"),
+      with_default("episode_offset", Schema::integer(0, 1000000), "1",
+                   "episode k replays source episode (k + offset) mod N: another child's session (0: the same "
+                   "child's, which reproduces the source exactly)"),
   });
 }
 
@@ -144,13 +149,14 @@ std::vector<std::pair<double, Action>> read_robot_actions(const std::filesystem:
 /// `yoked`: replays the robot actions of episode k of another run against the child of episode k.
 class YokedPolicy final : public PlayPolicy {
  public:
-  /// Parameters: `from: RUN_DIR` and, when that run holds several variants, `variant: NAME`.
+  /// Parameters: `from: RUN_DIR`, `variant: NAME` when that run holds several, `episode_offset` (default 1).
   explicit YokedPolicy(const YAML::Node& params) {
-    const YAML::Node node = params.IsDefined() && !params.IsNull() ? params : YAML::Node(YAML::NodeType::Map);
+    YAML::Node node = params.IsDefined() && !params.IsNull() ? YAML::Clone(params) : YAML::Node(YAML::NodeType::Map);
     ValidationErrors errors;
     yoked_schema()->validate(node, "robot.params", "", errors);
     errors.throw_if_any();
     from_ = node["from"].as<std::string>();
+    offset_ = node["episode_offset"] ? node["episode_offset"].as<int>() : 1;
     if (!fs::is_regular_file(from_ / kEpisodesFile)) {
       throw InputError(fmt::format("'{}' is not a run folder (it has no {})", from_.string(), kEpisodesFile),
                        "robot.params.from", "the folder of a finished `freeplay run` of a child-robot scenario");
@@ -177,9 +183,9 @@ class YokedPolicy final : public PlayPolicy {
 
   std::string name() const override { return "yoked"; }
 
-  /// Loads the source's robot actions of episode `context.episode_index`.
+  /// Loads the source's robot actions of the episode yoked to `context.episode_index`.
   void reset(const PolicyContext& context, Rng /*rng*/) override {
-    actions_ = read_robot_actions(event_log(context.episode_index));
+    actions_ = read_robot_actions(event_log(source_episode(context.episode_index)));
     next_ = 0;
   }
 
@@ -192,12 +198,26 @@ class YokedPolicy final : public PlayPolicy {
     return due;
   }
 
-  /// Every episode 0 … episodes − 1 needs a finished source episode with a plain event log.
+  /// Every episode 0 … episodes − 1 needs its own finished source episode with a plain event log.
   void check_run(int episodes) const override {
-    for (int k = 0; k < episodes; ++k) event_log(k);
+    const auto available = static_cast<int>(source_->episode_ids.at(variant_).size());
+    if (episodes > available) {
+      throw InputError(fmt::format("the source run '{}' [{}] holds {} episodes, this run has {}: each yoked episode "
+                                   "replays its own source episode",
+                                   from_.string(), variant_, available, episodes),
+                       "robot.params.from", fmt::format("a source run with at least {} episodes, or at most {} "
+                                                        "episodes in this run", episodes, available));
+    }
+    for (int k = 0; k < episodes; ++k) event_log(source_episode(k));
   }
 
  private:
+  /// The source episode replayed in episode `index`: (index + offset) mod the source's episode count.
+  int source_episode(int index) const {
+    const auto available = static_cast<long>(source_->episode_ids.at(variant_).size());
+    return static_cast<int>((static_cast<long>(index) + offset_) % available);
+  }
+
   /// The event log of source episode `index`; InputError naming what is missing.
   fs::path event_log(int index) const {
     const auto& ids = source_->episode_ids.at(variant_);
@@ -220,12 +240,13 @@ class YokedPolicy final : public PlayPolicy {
 
   fs::path from_;
   std::string variant_;
+  int offset_ = 1;
   std::shared_ptr<const SourceRun> source_;
   std::vector<std::pair<double, Action>> actions_;  // free-play time → action, in log order
   std::size_t next_ = 0;
 };
 
 FREEPLAY_REGISTER_POLICY(YokedPolicy, "yoked",
-                         "replays the robot actions of episode k of another run (yoked control; params: from, variant)");
+                         "replays another run's robot actions, each episode those of another child (yoked control)");
 
 }  // namespace freeplay::policies

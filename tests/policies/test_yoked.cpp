@@ -104,20 +104,50 @@ TEST(YokedPolicy, ReplaysEpisodeKAtTheRecordedTicksThenDoesNothing) {
   EXPECT_NO_THROW(policy->check_run(3));
 }
 
+TEST(YokedPolicy, EpisodeKReplaysAnotherChildsSessionUnlessTheOffsetIsZero) {
+  const auto dir = make_source("offset", {"social"}, 3);
+  std::ofstream(dir / "events" / "social-0001.jsonl")
+      << R"({"data":{"stage":"freeplay"},"source":"protocol","t":10.0,"type":"stage"})" << "\n"
+      << R"({"data":{"text":"Other!","to":""},"source":"robot","t":12.0,"type":"say"})" << "\n";
+  const auto first_utterance = [&](const std::string& extra, int episode) {
+    auto policy = make_policy("yoked", params_from(dir, extra));
+    PolicyContext context;
+    context.episode_index = episode;
+    policy->reset(context, Rng(1));
+    Observation obs;
+    obs.t = 100.0;
+    for (const auto& a : policy->decide(obs)) {
+      if (const auto* say = std::get_if<Say>(&a)) return say->text;
+    }
+    return std::string("none");
+  };
+  EXPECT_EQ(first_utterance("", 0), "Other!");                       // default offset 1: source episode 1
+  EXPECT_EQ(first_utterance("", 1), "Wow!");                         // source episode 2
+  EXPECT_EQ(first_utterance("", 2), "Wow!");                         // wraps to source episode 0
+  EXPECT_EQ(first_utterance(", episode_offset: 0", 1), "Other!");    // the same child's own session
+  EXPECT_EQ(first_utterance(", episode_offset: 2", 2), "Other!");    // (2 + 2) mod 3 = 1
+  const auto negative = error_of([&] { make_policy("yoked", params_from(dir, ", episode_offset: -1")); });
+  EXPECT_NE(negative.find("episode_offset"), std::string::npos) << negative;
+}
+
 TEST(YokedPolicy, FewerSourceEpisodesFailBeforeTheRun) {
   const auto dir = make_source("fewer", {"social"}, 2);
   const auto policy = make_policy("yoked", params_from(dir));
   const auto message = error_of([&] { policy->check_run(5); });
   EXPECT_NE(message.find("robot.params.from"), std::string::npos) << message;
-  EXPECT_NE(message.find("no finished episode 2"), std::string::npos) << message;
-  EXPECT_NE(message.find("at least 3 episodes"), std::string::npos) << message;
+  EXPECT_NE(message.find("holds 2 episodes, this run has 5"), std::string::npos) << message;
+  EXPECT_NE(message.find("at least 5 episodes"), std::string::npos) << message;
+  // A gap in the source (an episode that did not finish) is named too.
+  fs::remove(dir / "events" / "social-0001.jsonl");
+  const auto gap = error_of([&] { policy->check_run(2); });
+  EXPECT_NE(gap.find("social-0001.jsonl"), std::string::npos) << gap;
 }
 
 TEST(YokedPolicy, ASourceWithoutEventLogsNamesTheMissingFileAndTheFix) {
   const auto none = make_source("none", {"social"}, 2, false);
   const auto policy = make_policy("yoked", params_from(none));
   const auto message = error_of([&] { policy->check_run(2); });
-  EXPECT_NE(message.find("social-0000.jsonl"), std::string::npos) << message;
+  EXPECT_NE(message.find("social-0001.jsonl"), std::string::npos) << message;
   EXPECT_NE(message.find("--events all"), std::string::npos) << message;
   const auto gz = make_source("gz", {"social"}, 1, true, true);
   const auto gz_message = error_of([&] { make_policy("yoked", params_from(gz))->check_run(1); });

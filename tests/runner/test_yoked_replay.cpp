@@ -1,5 +1,5 @@
 // The yoked control end to end: a yoked run replays the source run's robot actions (content and free-play time),
-// episode by episode, deterministically and whatever the number of workers; a source it cannot replay is refused
+// each episode those of another child's session, deterministically and whatever the number of workers; a source it cannot replay is refused
 // before any episode starts.
 
 #include <fmt/format.h>
@@ -89,7 +89,7 @@ std::vector<double> durations(const fs::path& dir) {
 
 }  // namespace
 
-TEST(YokedReplay, ReplaysTheSourcesRobotActionsEpisodeByEpisode) {
+TEST(YokedReplay, ReplaysTheSourcesRobotActionsOfAnotherChild) {
   const auto dir = fresh_dir("replay");
   for (const std::string source : {"social", "asocial"}) {
     run(scenario_file(dir, source, source), dir / source, 2);
@@ -98,14 +98,30 @@ TEST(YokedReplay, ReplaysTheSourcesRobotActionsEpisodeByEpisode) {
     const auto yoked_durations = durations(dir / ("yoked-" + source));
     std::size_t compared = 0;
     for (int k = 0; k < kEpisodes; ++k) {
-      const auto id = fmt::format("-{:04d}.jsonl", k);
-      // Compared over the free play both episodes had; after the source's end the yoked robot does nothing.
-      const auto expected = robot_actions(dir / source / "events" / (source + id), yoked_durations[k]);
-      const auto replayed = robot_actions(dir / ("yoked-" + source) / "events" / ("yoked-" + source + id), 1e9);
+      // Episode k replays source episode k + 1 (mod 3): the session of another child, over the free play both
+      // episodes had (after the source's end the yoked robot does nothing).
+      const auto source_log = dir / source / "events" / fmt::format("{}-{:04d}.jsonl", source, (k + 1) % kEpisodes);
+      const auto expected = robot_actions(source_log, yoked_durations[static_cast<std::size_t>(k)]);
+      const auto replayed =
+          robot_actions(dir / ("yoked-" + source) / "events" / fmt::format("yoked-{}-{:04d}.jsonl", source, k), 1e9);
       EXPECT_EQ(replayed, expected) << source << " episode " << k;
       compared += expected.size();
     }
     EXPECT_GT(compared, 10u) << source;  // the sources really acted
+  }
+}
+
+TEST(YokedReplay, OffsetZeroReproducesTheSourceSessionsExactly) {
+  // The same child (same seed) and the same robot actions at the same times: the same session. This is why the
+  // default offset is 1 (docs/validity.md).
+  const auto dir = fresh_dir("offset0");
+  run(scenario_file(dir, "social", "social"), dir / "social", 2);
+  run(scenario_file(dir, "same", "yoked", fmt::format("{{from: '{}', episode_offset: 0}}", (dir / "social").string())),
+      dir / "same", 2);
+  EXPECT_EQ(durations(dir / "same"), durations(dir / "social"));
+  for (int k = 0; k < kEpisodes; ++k) {
+    EXPECT_EQ(robot_actions(dir / "same" / "events" / fmt::format("same-{:04d}.jsonl", k), 1e9),
+              robot_actions(dir / "social" / "events" / fmt::format("social-{:04d}.jsonl", k), 1e9));
   }
 }
 
@@ -130,7 +146,7 @@ TEST(YokedReplay, ASourceItCannotReplayIsRefusedBeforeAnyEpisode) {
     run(scenario_file(dir, "more", "yoked", from("social"), 3), dir / "more", 1);
     FAIL() << "three episodes yoked to two";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("no finished episode 2"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("holds 2 episodes, this run has 3"), std::string::npos) << e.what();
   }
   EXPECT_FALSE(fs::exists(dir / "more" / "episodes.jsonl") && !read_file(dir / "more" / "episodes.jsonl").empty());
   try {
