@@ -205,7 +205,10 @@ py::dict decision_info(const EnvEpisode& e) {
   const auto& d = e.decision();
   py::dict info;
   py::list events;
-  for (const auto& event : d.events) events.append(py::module_::import("json").attr("loads")(event.dump()));
+  if (!d.events.empty()) {
+    const auto loads = py::module_::import("json").attr("loads");
+    for (const auto& event : d.events) events.append(loads(event.dump()));
+  }
   info["events"] = events;
   info["results"] = py::cast(d.results);
   info["coded"] = py::cast(d.coded);

@@ -28,8 +28,8 @@ def scenario():
 
 
 def cli(*args, cwd):
-    """Runs the C++ `freeplay` program; returns the CompletedProcess."""
-    program = BUILD_DIR / "freeplay"
+    """Runs the C++ program's `run`/`suite` front (build/freeplay-run); returns the CompletedProcess."""
+    program = BUILD_DIR / "freeplay-run"
     if not program.exists():
         pytest.skip("the C++ freeplay program is not built")
     return subprocess.run([str(program), *map(str, args)], cwd=cwd, capture_output=True, text=True)
