@@ -28,7 +28,7 @@ from ._freeplay import (  # noqa: F401  (the C++ types a policy sees and returns
     episode_seed,
     policy_names,
 )
-from .experiments import Run, load, run, validate  # noqa: F401
+from .experiments import Run, compare, load, run, validate  # noqa: F401
 from .policy import Policy  # noqa: F401
 from .env import Env, VecEnv, observation_space, action_space  # noqa: F401
 from . import rewards  # noqa: F401
@@ -36,6 +36,6 @@ from . import rewards  # noqa: F401
 __all__ = [
     "ActionResult", "CancelMove", "Env", "InputError", "ItemObservation", "LookAt", "MoveItem", "Observation",
     "PerceivedChild", "PerceivedGaze", "PointAt", "Policy", "PolicyContext", "Pose2", "RobotSelf", "Rng", "Run",
-    "Say", "TouchObservation", "VecEnv", "Wait", "ZoneObservation", "action_space", "episode_seed", "load",
+    "Say", "TouchObservation", "VecEnv", "Wait", "ZoneObservation", "action_space", "compare", "episode_seed", "load",
     "observation_space", "policy_names", "rewards", "run", "validate",
 ]

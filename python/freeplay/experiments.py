@@ -121,3 +121,29 @@ class Run:
         """summary.csv as a pandas DataFrame; needs python3-pandas."""
         import pandas
         return pandas.read_csv(os.path.join(self.dir, "summary.csv"))
+
+
+def compare(run_a, run_b=None, *, variants=(), metrics=(), program=None, extra_args=()):
+    """Compares two run folders (or two variants of one) with ``freeplay compare --json``: the command line's own
+    engine and numbers (paired bootstrap CIs, Holm-adjusted p-values). Returns its JSON as Python data.
+
+    ``variants``: up to two variant ids (``--variant``); ``metrics``: names or globs (``--metric``); ``program``:
+    the ``freeplay`` executable (default: $FREEPLAY_PROGRAM, else build/freeplay beside this package, else
+    ``freeplay`` on PATH).
+    """
+    import shutil
+    import subprocess
+    if program is None:
+        beside = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "freeplay")
+        program = os.environ.get("FREEPLAY_PROGRAM") or (beside if os.path.exists(beside) else shutil.which("freeplay"))
+    if not program:
+        raise FileNotFoundError("no freeplay program: build it (scripts/build.sh) or pass program=")
+    args = [os.fspath(program), "compare", os.fspath(run_a)] + ([os.fspath(run_b)] if run_b is not None else [])
+    for v in variants:
+        args += ["--variant", v]
+    for m in metrics:
+        args += ["--metric", m]
+    done = subprocess.run(args + ["--json", *extra_args], capture_output=True, text=True)
+    if done.returncode != 0:
+        raise RuntimeError(f"freeplay compare failed ({done.returncode}): {done.stderr.strip()}")
+    return json.loads(done.stdout)

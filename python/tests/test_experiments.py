@@ -5,7 +5,7 @@ import json
 import pytest
 
 import freeplay
-from conftest import SHORT, cli
+from conftest import BUILD_DIR, SHORT, cli
 
 
 def test_load_returns_the_validated_variants(scenario):
@@ -134,3 +134,14 @@ def test_python_dash_m_freeplay_runs_python_policies(scenario, tmp_path):
     (record,) = freeplay.Run(tmp_path / "run").records
     assert record["policy"] == "python:policies_for_tests:Idle"
     assert json.loads((tmp_path / "run" / "run.json").read_text())["complete"]
+
+
+def test_compare_uses_the_command_line_comparison(scenario, tmp_path):
+    program = BUILD_DIR / "freeplay"
+    if not (program.exists() and (BUILD_DIR / "freeplay-full").exists()):
+        pytest.skip("the C++ freeplay program (freeplay-full) is not built")
+    a = freeplay.run(scenario, episodes=3, seed=4, overrides=SHORT + ["robot.policy=idle"], out=tmp_path / "a")
+    b = freeplay.run(scenario, episodes=3, seed=4, overrides=SHORT, out=tmp_path / "b")
+    result = freeplay.compare(a.dir, b.dir, program=program)
+    assert result == freeplay.compare(a.dir, b.dir, program=program)  # deterministic (fixed bootstrap seed)
+    assert "duration_s" in json.dumps(result)
