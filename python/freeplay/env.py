@@ -88,7 +88,9 @@ class Env:
         self.episode_seed = None
 
     def reset(self, seed=None, options=None):
-        """Starts an episode; returns its first observation and info (events so far, coded labels, seed)."""
+        """Starts an episode; returns its first observation and info (events so far, coded labels, seed, and the
+        ``context`` and ``rng`` a policy of a run gets in ``reset``: pass them on and a Python policy's rollout equals
+        its run)."""
         options = options or {}
         if seed is not None:
             self._seed = int(seed)
@@ -98,6 +100,8 @@ class Env:
         self.episode_seed = _freeplay.episode_seed(self._seed, self.episode_index)
         self._episode.start(self.episode_seed)
         obs, _, _, _, info = self._outcome(reward=False)
+        info["context"] = self._episode.context
+        info["rng"] = self._episode.policy_rng  # the stream a policy of a run of this episode gets
         return obs, info
 
     def step(self, action):

@@ -122,6 +122,16 @@ class EnvEpisode {
       labels.assign(child.coded.begin(), child.coded.end());
     }
   }
+  /// Called by the channel policy when the episode resets it: keeps the policy's context and random stream.
+  void reset_policy(const policies::PolicyContext& context, Rng rng) {
+    std::lock_guard lock(mutex_);
+    context_ = context;
+    policy_rng_ = rng;
+  }
+  /// The context the episode gave its policy.
+  const policies::PolicyContext& context() const { return context_; }
+  /// The policy's random stream as the episode handed it over (the same as a run's policy gets).
+  Rng policy_rng() const { return policy_rng_; }
   /// The channel policy's perceives_children().
   bool perceives_children() const { return perceives_children_; }
 
@@ -185,6 +195,8 @@ class EnvEpisode {
   std::vector<policies::Action> actions_;
   std::optional<runner::EpisodeResult> result_;
   std::exception_ptr error_;
+  policies::PolicyContext context_;
+  Rng policy_rng_;
 };
 
 /// The policy of an Env episode: forwards decisions and results to its EnvEpisode.
@@ -192,7 +204,7 @@ class ChannelPolicy final : public policies::PlayPolicy {
  public:
   explicit ChannelPolicy(EnvEpisode& episode) : episode_(episode) {}
   std::string name() const override { return "python:env"; }
-  void reset(const policies::PolicyContext& /*context*/, Rng /*rng*/) override {}
+  void reset(const policies::PolicyContext& context, Rng rng) override { episode_.reset_policy(context, rng); }
   std::vector<policies::Action> decide(const policies::Observation& observation) override { return episode_.decide(observation); }
   void on_result(const policies::ActionResult& result) override { episode_.result(result); }
   bool perceives_children() const override { return episode_.perceives_children(); }
@@ -238,6 +250,8 @@ void bind_env(py::module_& m) {
       .def_property_readonly("hit_cap", &EnvEpisode::hit_cap)
       .def_property_readonly("observation", [](const EnvEpisode& e) { return e.decision().observation; })
       .def("info", &decision_info)
+      .def_property_readonly("context", &EnvEpisode::context)
+      .def_property_readonly("policy_rng", &EnvEpisode::policy_rng)
       .def("record", [](const EnvEpisode& e) { return py::module_::import("json").attr("loads")(e.record().dump()); })
       .def("events_jsonl", &EnvEpisode::events_jsonl);
   m.def("_act_all", [](const std::vector<EnvEpisode*>& episodes, const std::vector<py::object>& actions) {

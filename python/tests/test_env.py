@@ -11,7 +11,7 @@ from policies_for_tests import Mover, Recorder
 def rollout(env, policy, seed):
     """Plays one episode of `env` with `policy`'s decisions; returns (rewards, last info, steps)."""
     obs, info = env.reset(seed=seed)
-    policy.reset(None, freeplay.Rng(0))
+    policy.reset(info["context"], info["rng"])
     rewards, steps = [], 0
     while True:
         obs, reward, terminated, truncated, info = env.step(policy.decide(obs))
@@ -33,6 +33,16 @@ def test_env_rollout_matches_a_run_of_the_same_policy(scenario, tmp_path):
     assert sum(rewards) == pytest.approx(steps * 0.1)
 
 
+def test_env_rollout_of_a_python_policy_matches_its_run(scenario, tmp_path):
+    env = freeplay.Env(scenario, SHORT)
+    _, info, _ = rollout(env, Mover(), seed=6)
+    run = freeplay.run(scenario, episodes=1, seed=6, out=tmp_path / "run", events="all",
+                       overrides=SHORT + ["robot.policy=python:policies_for_tests:Mover"])
+    (record,) = run.records
+    assert env.events() == run.events_text(record["episode_id"])
+    assert info["record"]["duration_s"] == record["duration_s"]
+
+
 def test_env_is_deterministic_and_accepts_actions(scenario):
     env = freeplay.Env(scenario, SHORT)
     first = rollout(env, Mover(), seed=9)
@@ -40,7 +50,7 @@ def test_env_is_deterministic_and_accepts_actions(scenario):
     again = rollout(env, Mover(), seed=9)
     assert first[2] == again[2]
     assert env.events() == log
-    assert "robot" in log  # the moves reached the game
+    assert '"move_goal"' in log  # the moves reached the robot
 
 
 def test_observation_types(scenario):
