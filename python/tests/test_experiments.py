@@ -5,7 +5,7 @@ import json
 import pytest
 
 import freeplay
-from conftest import BUILD_DIR, SHORT, cli
+from conftest import BUILD_DIR, SCENARIO, SHORT, cli
 
 
 def test_load_returns_the_validated_variants(scenario):
@@ -145,3 +145,18 @@ def test_compare_uses_the_command_line_comparison(scenario, tmp_path):
     result = freeplay.compare(a.dir, b.dir, program=program)
     assert result == freeplay.compare(a.dir, b.dir, program=program)  # deterministic (fixed bootstrap seed)
     assert "duration_s" in json.dumps(result)
+
+
+def test_python_dash_m_freeplay_runs_suites_in_shards(tmp_path):
+    import subprocess
+    import sys
+    suite = SCENARIO.parent / "baselines.yaml"
+    sets = [a for o in SHORT for a in ("--set", o)]
+    done = subprocess.run([sys.executable, "-m", "freeplay", "suite", str(suite), "--episodes", "2", "--shard", "1/2",
+                           "-j", "2", "-q", "--out", str(tmp_path / "run"), *sets], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    records = freeplay.Run(tmp_path / "run").records
+    assert 0 < len(records) < 6 and {r["variant"] for r in records} <= {"child-child", "child-robot-asocial",
+                                                                         "child-robot-social"}
+    bad = subprocess.run([sys.executable, "-m", "freeplay", "suite", str(SCENARIO)], capture_output=True, text=True)
+    assert bad.returncode == 2 and "not a suite" in bad.stderr
