@@ -45,7 +45,7 @@ class BadAction(freeplay.Policy):
 
 
 class Raises(freeplay.Policy):
-    """Raises inside decide after 3 s of the episode whose seed parity is odd (so some episodes finish)."""
+    """Raises inside decide after 3 s in about half of the episodes (by its own stream), so some episodes finish."""
 
     def reset(self, context, rng):
         self.fail = rng.uniform() < 0.5
@@ -57,10 +57,17 @@ class Raises(freeplay.Policy):
 
 
 class Recorder(freeplay.Policy):
-    """Records the observations it saw (for checks of the observation's types)."""
+    """Keeps every observation it saw (in the class, for the tests)."""
 
     seen = []
 
     def decide(self, observation):
-        Recorder.seen.append(observation)
+        type(self).seen.append(observation)
         return []
+
+
+class PerceivingRecorder(Recorder):
+    """A Recorder that perceives the children."""
+
+    perceives_children = True
+    seen = []

@@ -160,3 +160,17 @@ def test_python_dash_m_freeplay_runs_suites_in_shards(tmp_path):
                                                                          "child-robot-social"}
     bad = subprocess.run([sys.executable, "-m", "freeplay", "suite", str(SCENARIO)], capture_output=True, text=True)
     assert bad.returncode == 2 and "not a suite" in bad.stderr
+
+
+def test_a_python_policy_sees_children_only_when_it_perceives_them(scenario, tmp_path):
+    from policies_for_tests import PerceivingRecorder, Recorder
+    Recorder.seen.clear()
+    PerceivingRecorder.seen.clear()
+    for name in ("Recorder", "PerceivingRecorder"):
+        freeplay.run(scenario, episodes=1, seed=3, out=tmp_path / name,
+                     overrides=SHORT + [f"robot.policy=python:policies_for_tests:{name}"])
+    assert Recorder.seen and all(not o.children for o in Recorder.seen)
+    assert any(o.children for o in PerceivingRecorder.seen)
+    first = Recorder.seen[0]
+    assert isinstance(first, freeplay.Observation) and first.items
+    assert first.item(first.items[0].name).name == first.items[0].name and first.item("unicorn") is None
