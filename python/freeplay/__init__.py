@@ -26,6 +26,7 @@ from ._freeplay import (  # noqa: F401  (the C++ types a policy sees and returns
     Wait,
     ZoneObservation,
     episode_seed,
+    point_in_polygon,
     policy_names,
 )
 from .experiments import Run, compare, load, run, validate  # noqa: F401
@@ -37,5 +38,5 @@ __all__ = [
     "ActionResult", "CancelMove", "Env", "InputError", "ItemObservation", "LookAt", "MoveItem", "Observation",
     "PerceivedChild", "PerceivedGaze", "PointAt", "Policy", "PolicyContext", "Pose2", "RobotSelf", "Rng", "Run",
     "Say", "TouchObservation", "VecEnv", "Wait", "ZoneObservation", "action_space", "compare", "episode_seed", "load",
-    "observation_space", "policy_names", "rewards", "run", "validate",
+    "observation_space", "point_in_polygon", "policy_names", "rewards", "run", "validate",
 ]

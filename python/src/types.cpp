@@ -7,6 +7,7 @@
 
 #include "bindings.hpp"
 #include "freeplay/core/error.hpp"
+#include "freeplay/core/geometry.hpp"
 #include "freeplay/core/rng.hpp"
 
 namespace freeplay::python {
@@ -144,7 +145,18 @@ void bind_rng(py::module_& m) {
       .def("uniform_int", &Rng::uniform_int, py::arg("lo"), py::arg("hi"), "integer in [lo, hi]")
       .def("normal", &Rng::normal, py::arg("mean") = 0.0, py::arg("sd") = 1.0)
       .def("exponential", &Rng::exponential, py::arg("rate"))
-      .def("bernoulli", &Rng::bernoulli, py::arg("p"));
+      .def("bernoulli", &Rng::bernoulli, py::arg("p"))
+      .def("shuffle", [](Rng& r, py::list items) {
+        std::vector<py::object> shuffled;
+        for (const auto item : items) shuffled.push_back(py::reinterpret_borrow<py::object>(item));
+        r.shuffle(shuffled);
+        for (std::size_t i = 0; i < shuffled.size(); ++i) items[i] = shuffled[i];
+      }, py::arg("items"), "Fisher–Yates shuffle of a list in place (the draws of the C++ Rng::shuffle)");
+}
+
+void bind_geometry(py::module_& m) {
+  m.def("point_in_polygon", &point_in_polygon, py::arg("polygon"), py::arg("point"),
+        "True when `point` lies in `polygon` ((n, 2) array or list of points): core's test, as C++ policies use it");
 }
 
 template <class A>
@@ -180,6 +192,7 @@ void bind_types(py::module_& m) {
   bind_observation(m);
   bind_actions(m);
   bind_rng(m);
+  bind_geometry(m);
 }
 
 }  // namespace freeplay::python

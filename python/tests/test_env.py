@@ -5,7 +5,7 @@ import pytest
 
 import freeplay
 from conftest import SHORT
-from policies_for_tests import Mover, Recorder
+from policies_for_tests import Mover
 
 
 def rollout(env, policy, seed):

@@ -174,3 +174,16 @@ def test_a_python_policy_sees_children_only_when_it_perceives_them(scenario, tmp
     first = Recorder.seen[0]
     assert isinstance(first, freeplay.Observation) and first.items
     assert first.item(first.items[0].name).name == first.items[0].name and first.item("unicorn") is None
+
+
+def test_a_python_port_of_asocial_gives_asocials_event_logs(scenario, tmp_path):
+    common = dict(episodes=3, seed=12, jobs=2, events="all")
+    cpp = freeplay.run(scenario, out=tmp_path / "cpp", overrides=SHORT + ["robot.policy=asocial"], **common)
+    py = freeplay.run(scenario, out=tmp_path / "py",
+                      overrides=SHORT + ["robot.policy=python:policies_for_tests:Asocial"], **common)
+    moves = 0
+    for a, b in zip(cpp.records, py.records):
+        log = cpp.events_text(a["episode_id"])
+        assert log == py.events_text(b["episode_id"])
+        moves += log.count('"move_goal"')
+    assert moves > 0
