@@ -161,6 +161,19 @@ std::unique_ptr<PlayPolicy> make_policy(const std::string& name, const YAML::Nod
 /// Names of every registered policy.
 std::vector<std::string> policy_names();
 
+/// Builds a policy of a family from its full name (e.g. "python:module:Class") and its parameters.
+using PolicyFamilyFactory = std::function<std::unique_ptr<PlayPolicy>(const std::string& name, const YAML::Node& params)>;
+/// The prefix of the names of policies written in Python ("python:module:Class"); only the Python module builds them.
+inline constexpr const char* kPythonPolicyPrefix = "python:";
+/// Installs the builder of every policy whose name starts with `prefix` (a front such as the Python module calls
+/// it before running episodes); replaces an earlier builder of the same prefix.
+void register_policy_family(std::string prefix, PolicyFamilyFactory make);
+/// Name patterns a scenario may use besides the registered names ("python:*": accepted by every front, built only
+/// where a family builder is installed).
+std::vector<std::string> policy_name_patterns();
+/// Throws InputError when this program cannot build policy `name` (unknown, or a Python policy outside Python).
+void check_policy_available(const std::string& name);
+
 /// Registers `Class` (constructible from `const YAML::Node&`) under `name`: one line per new policy.
 #define FREEPLAY_REGISTER_POLICY(Class, name, description)                                                   \
   static const bool freeplay_policy_registered_##Class = ::freeplay::policies::register_policy(             \
