@@ -11,9 +11,13 @@ if(FREEPLAY_SANITIZE)
   add_link_options(-fsanitize=address,undefined)
 endif()
 
+# ccache, when installed, in front of every compile (FREEPLAY_CCACHE=OFF, or CCACHE_DISABLE=1 for one build, turns it
+# off). Its base_dir is the source folder, so the cache keys hold paths relative to the build folder: a second clone,
+# a worktree or a CI checkout in another folder gets the same hits.
 find_program(CCACHE_PROGRAM ccache)
-if(CCACHE_PROGRAM)
-  set(CMAKE_CXX_COMPILER_LAUNCHER ${CCACHE_PROGRAM})
+option(FREEPLAY_CCACHE "Compile through ccache when it is installed" ON)
+if(CCACHE_PROGRAM AND FREEPLAY_CCACHE)
+  set(CMAKE_CXX_COMPILER_LAUNCHER ${CMAKE_COMMAND} -E env CCACHE_BASEDIR=${PROJECT_SOURCE_DIR} ${CCACHE_PROGRAM})
 endif()
 
 # freeplay_add_library(NAME folder SOURCES ... DEPS ...): a library with public headers in <folder>/include.
