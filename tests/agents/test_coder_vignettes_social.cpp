@@ -167,6 +167,20 @@ Vignette child_glances_back_at_robot_comments() {
            never(kPurple, Cooperative, 10, 80)}};
 }
 
+Vignette child_answers_robot_remarks() {
+  return {"ChildAnswersTheRobotsRemarksAboutItsPlay",
+          "a robot that never plays remarks on the child's scene every 8 s ('is the lion hungry?'); the child "
+          "answers each in words, looking up ('yes, he eats the zebra!'), and goes on arranging its animals",
+          sentences({scheme::kAssociative, scheme::kGlance}),
+          true, 80.0,
+          [](Script& s) {
+            s.robot().say(Question, 1.2).every(8.0, 4.0, 80.0);
+            arrange(s.purple(), {"lion", "zebra", "elephant"}, kPurpleArea, 1.0, 79.0);
+            s.purple().say(Comment, 1.5).every(8.0, 5.6, 80.0);
+          },
+          {mostly(kPurple, Associative, 12, 80), never(kPurple, Cooperative, 12, 80)}};
+}
+
 Vignette two_children_build_one_zoo() {
   return {"TwoChildrenBuildOneZoo",
           "two children take turns placing animals side by side in one zoo in the middle, each watching the other's "
@@ -458,6 +472,7 @@ std::vector<Vignette> social_vignettes() {
           timetable_mover_robot(),
           child_ignores_chattering_robot(),
           child_glances_back_at_robot_comments(),
+          child_answers_robot_remarks(),
           two_children_build_one_zoo(),
           two_children_discuss_what_to_do_next(),
           child_follows_partner_and_comments(),

@@ -216,7 +216,7 @@ Vignette friendly_help() {
   return {"FriendlyHelpAndPraise",
           "both children play on their own sides; the yellow child asks for help every 6 s ('where does the hippo "
           "go?') and the purple child answers kindly and praises its scene",
-          sentences({scheme::kProsocial}),
+          sentences({scheme::kProsocial, scheme::kAssociative}),
           false, 60.0,
           [](Script& s) {
             arrange(s.purple(), {"lion", "zebra"}, kPurpleArea, 1.0, 59.0);
@@ -225,7 +225,7 @@ Vignette friendly_help() {
             s.purple().look_at_partner(1.0).every(6.0, 4.5, 59.0);
             s.purple().say(Comment, 1.5).every(6.0, 5.8, 59.0);  // "in the water! it's a nice zoo"
           },
-          {mostly(kPurple, Prosocial, 12, 60)}};
+          {mostly(kPurple, Prosocial, 12, 60), mostly(kPurple, Associative, 12, 60)}};
 }
 
 Vignette robot_takes_childs_item() {
