@@ -265,23 +265,37 @@ Vignette parallel_play() {
            never(kYellow, Cooperative, 10, 80)}};
 }
 
+/// The yellow child drags its animals right next to the purple child's every 5 s and says "look!" every 10 s, while
+/// purple arranges its own animals; purple glances up 0.6 s after each "look!" when `purple_glances`.
+void acts_next_to_purple(Script& s, bool purple_glances) {
+  arrange(s.purple(), {"lion", "zebra"}, {0.20, -0.26}, 1.0, 79.0);
+  static const std::array<std::string_view, 3> items = {"giraffe", "hippo", "crocodile"};
+  std::size_t k = 0;
+  for (double t = 3.0; t < 78.0; t += 5.0, ++k) {
+    s.yellow().drag(items[k % items.size()], {0.35, -0.10}, {0.23 + 0.01 * static_cast<double>(k % 3), -0.23}).at(t);
+  }
+  s.yellow().say(Comment, 1.0).every(10.0, 5.0, 78.0);  // "look!"
+  if (purple_glances) s.purple().look_at_partner(0.8).every(10.0, 5.6, 78.0);
+}
+
 Vignette partner_acts_near_my_item() {
   return {"PartnerKeepsActingNextToMyAnimalsWhileIIgnoreIt",
           "the yellow child drags its animals right next to the purple child's animals every 5 s and says 'look!' "
           "every 10 s; purple never looks up nor answers and keeps arranging its own animals",
           sentences({scheme::kNotMe, scheme::kParallel}),
           false, 80.0,
-          [](Script& s) {
-            arrange(s.purple(), {"lion", "zebra"}, {0.20, -0.26}, 1.0, 79.0);
-            static const std::array<std::string_view, 3> items = {"giraffe", "hippo", "crocodile"};
-            std::size_t k = 0;
-            for (double t = 3.0; t < 78.0; t += 5.0, ++k) {
-              s.yellow().drag(items[k % items.size()], {0.35, -0.10}, {0.23 + 0.01 * static_cast<double>(k % 3), -0.23})
-                  .at(t);
-            }
-            s.yellow().say(Comment, 1.0).every(10.0, 5.0, 78.0);  // "look!"
-          },
+          [](Script& s) { acts_next_to_purple(s, false); },
           {never(kPurple, Cooperative, 10, 80), never(kPurple, Associative, 10, 80)}};
+}
+
+Vignette partner_acts_near_my_item_i_glance() {
+  return {"PartnerKeepsActingNextToMyAnimalsIGlanceUpButPlayOn",
+          "as before, but purple glances up at each 'look!' before going back to its own animals, without a word",
+          sentences({scheme::kNotMe, scheme::kGlance, scheme::kParallel}),
+          false, 80.0,
+          [](Script& s) { acts_next_to_purple(s, true); },
+          {never(kPurple, Cooperative, 10, 80), never(kPurple, Associative, 10, 80),
+           mostly(kPurple, Parallel, 10, 80)}};
 }
 
 Vignette child_watches_robot_play() {
@@ -480,6 +494,7 @@ std::vector<Vignette> social_vignettes() {
           one_child_onlooking(),
           parallel_play(),
           partner_acts_near_my_item(),
+          partner_acts_near_my_item_i_glance(),
           child_watches_robot_play(),
           child_and_robot_in_parallel(),
           child_and_robot_build_one_scene(),

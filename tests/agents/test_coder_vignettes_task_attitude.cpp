@@ -183,6 +183,25 @@ Vignette grabbing() {
           {mostly(kPurple, Adversarial, 19, 25, 0.5), never(kYellow, Adversarial, 0, 45)}};
 }
 
+Vignette asking_before_taking() {
+  return {"AskingForTheLionThenTakingIt",
+          "the yellow child has put the lion down 4 s ago and plays with the giraffe; the purple child asks 'can I "
+          "have the lion?' and, without waiting for an answer, drags it to its side; yellow lets it be",
+          sentences({scheme::kAssertive, scheme::kAdversarial}),
+          false, 45.0,
+          [](Script& s) {
+            arrange(s.yellow(), {"lion"}, kSecondArea, 1.0, 13.0, 3.0);  // the lion rests from 14.5 s on
+            arrange(s.yellow(), {"giraffe", "hippo"}, kSecondArea + Vec2{0.08, 0.0}, 16.0, 45.0);
+            arrange(s.purple(), {"zebra", "girl"}, kPurpleArea, 1.0, 16.0);
+            s.purple().say(Request, 1.5).at(17.0);  // "can I have the lion?"
+            s.purple().drag("lion", kSecondArea, kPurpleArea, 1.5).at(18.5);
+            arrange(s.purple(), {"lion", "zebra"}, kPurpleArea, 22.0, 45.0);
+            s.yellow().look_at_partner(1.0).at(17.6);
+          },
+          {mostly(kPurple, Assertive, 17, 27, 0.5), never(kPurple, Adversarial, 0, 45),
+           never(kYellow, Frustrated, 0, 45)}};
+}
+
 Vignette protest_after_losing() {
   return {"ProtestAfterLosingAnItem",
           "the purple child drags away the lion the yellow child was playing with; yellow protests three times "
@@ -257,10 +276,21 @@ Vignette child_bosses_robot() {
 }
 
 std::vector<Vignette> task_and_attitude_vignettes() {
-  return {landscape_drawing(),   landscape_after_one_pick(),   animals_in_habitats(),     scribbles(),
-          silly_taps(),          asks_experimenter(),          stopped_playing(),         stopped_while_robot_goes_on(),
-          grabbing(),            protest_after_losing(),       bossy_proposals(),         friendly_help(),
-          robot_takes_childs_item(), child_bosses_robot()};
+  return {landscape_drawing(),
+          landscape_after_one_pick(),
+          animals_in_habitats(),
+          scribbles(),
+          silly_taps(),
+          asks_experimenter(),
+          stopped_playing(),
+          stopped_while_robot_goes_on(),
+          grabbing(),
+          asking_before_taking(),
+          protest_after_losing(),
+          bossy_proposals(),
+          friendly_help(),
+          robot_takes_childs_item(),
+          child_bosses_robot()};
 }
 
 }  // namespace
