@@ -138,8 +138,9 @@ TEST(Coder, AttentionTheOtherNeverReturnsIsNoExchange) {
   EXPECT_GT(shares[0][kParallel], 0.9);
 }
 
-TEST(Coder, OneExchangeIsOneBoutForItsHoldTime) {
-  // One spoken exchange in a minute of parallel play: one associative bout, then parallel again.
+TEST(Coder, OneExchangeIsOneBoutForItsWindow) {
+  // One spoken exchange in a minute of parallel play: one associative bout for each child as long as its words lie
+  // within the interaction window, then parallel again.
   PairCoder coder(params().coder, false);
   for (long tick = 0; tick < 600; ++tick) {
     const double t = tick * 0.1;
@@ -159,7 +160,7 @@ TEST(Coder, OneExchangeIsOneBoutForItsHoldTime) {
       associative_s += bout.stop - bout.start;
     }
     EXPECT_EQ(associative_bouts, 1);
-    EXPECT_NEAR(associative_s, params().coder.exchange_hold_s, 0.5);
+    EXPECT_NEAR(associative_s, params().coder.interaction_window_s, 1.5);
   }
 }
 
