@@ -14,6 +14,7 @@
 #include "sibling_program.hpp"
 #include "freeplay/core/atomic_file.hpp"
 #include "freeplay/core/error.hpp"
+#include "freeplay/policies/play_policy.hpp"
 #include "freeplay/runner/episode.hpp"
 #include "freeplay/runner/run_folder.hpp"
 #include "freeplay/runner/suite_runner.hpp"
@@ -87,6 +88,9 @@ void run_command(const RunCommandOptions& o, bool suite_command) {
   }
   const auto suite = is_suite ? runner::load_suite(o.file, overrides, vocabulary)
                               : runner::single_scenario_suite(o.file, overrides, vocabulary);
+  for (const auto& v : suite.variants) {  // e.g. a Python policy given to the C++ program: say so before starting
+    if (v.scenario.condition == "child-robot") policies::check_policy_available(v.scenario.robot.policy);
+  }
   const ObserverOptions observer_options{o.record};
   if (!observers_available() && std::any_of(suite.variants.begin(), suite.variants.end(), [&](const auto& v) {
         return has_observers(v.scenario, observer_options);

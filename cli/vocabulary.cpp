@@ -10,6 +10,7 @@ namespace freeplay::cli {
 runner::ScenarioVocabulary scenario_vocabulary() {
   runner::ScenarioVocabulary v;
   v.policies = policies::policy_names();
+  for (auto& pattern : policies::policy_name_patterns()) v.policies.push_back(std::move(pattern));  // python:*
 #ifndef FREEPLAY_WITH_ESPEAK
   v.voices = {"babble"};  // built without the optional espeak-ng voice (voice_espeak/, docs/recording.md)
 #endif

@@ -19,6 +19,7 @@ packages=(
   python3-rosmaster python3-rostopic python3-actionlib python3-tf2-msgs python3-sensor-msgs python3-geometry-msgs
   python3-visualization-msgs python3-actionlib-msgs python3-nav-msgs
   zlib1g-dev libpng-dev linux-perf valgrind
+  pybind11-dev python3-dev python3-numpy python3-pandas python3-pytest  # the freeplay Python module (python/)
   clang libclang-rt-14-dev
   libopencv-contrib-dev  # ArUco markers for the fiducial localisation (localisation/)
   # the experimenter's web page (web/: websocketpp over Boost.Asio) and its headless-browser test (tests/web/)

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <string_view>
 
 namespace freeplay {
 
@@ -234,6 +235,9 @@ void Schema::validate(YAML::Node node, const std::string& path, const std::strin
       const auto value = node.Scalar();
       for (const auto& a : allowed_) {
         if (a == value) return;
+        if (a.ends_with('*') && value.size() >= a.size() && value.starts_with(std::string_view(a).substr(0, a.size() - 1))) {
+          return;
+        }
       }
       return wrong(fmt::format("unknown value '{}'", value));
     }

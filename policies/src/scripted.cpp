@@ -1,6 +1,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <limits>
 
 #include "freeplay/core/error.hpp"
 #include "freeplay/core/yaml_schema.hpp"
@@ -10,11 +11,16 @@ namespace freeplay::policies {
 
 namespace {
 
+constexpr double kMinimumPeriodS = 0.1;  // the decision tick: a shorter period would repeat within one tick
+
 std::shared_ptr<const Schema> script_schema() {
   const auto point2 = Schema::list(Schema::number(-10, 10), 2, 2);
   const auto point3 = Schema::list(Schema::number(-10, 10), 3, 3);
   const auto action = Schema::map({
       required("t", Schema::number(0, 1e6), "seconds since the start of free play"),
+      optional("every", Schema::number(kMinimumPeriodS, 1e6),
+               "repeat the action every this many seconds from `t` (at least one 0.1 s decision tick)"),
+      optional("until", Schema::number(0, 1e6), "last free-play second of a repeated action (default: no end)"),
       optional("move", Schema::map({required("item", Schema::string()), required("to", point2)})),
       optional("say", Schema::map({required("text", Schema::string()),
                                    with_default("to", Schema::enumeration({"purple", "yellow", "both"}), "both")})),
@@ -30,9 +36,18 @@ std::shared_ptr<const Schema> script_schema() {
   });
 }
 
+/// One script entry: an action at free-play time `t`, repeated every `every` seconds up to `until` when `every` > 0.
 struct TimedAction {
   double t;
   Action action;
+  double every = 0.0;                                        // 0: once
+  double until = std::numeric_limits<double>::infinity();   // last time a repetition may start
+};
+
+/// Where a script entry stands: the number of times it has fired.
+struct EntryProgress {
+  long fired = 0;
+  bool done = false;
 };
 
 }  // namespace
@@ -40,7 +55,7 @@ struct TimedAction {
 /// `scripted`: replays a timed action file, like a Wizard-of-Oz operator with a script.
 class ScriptedPolicy final : public PlayPolicy {
  public:
-  /// Parameters: `actions: [{t, move|say|look_at|point_at|cancel|wait}]` or `file: script.yaml`.
+  /// Parameters: `actions: [{t, move|say|look_at|point_at|cancel|wait, every?, until?}]` or `file: script.yaml`.
   explicit ScriptedPolicy(const YAML::Node& params) {
     YAML::Node node = params.IsDefined() && !params.IsNull() ? YAML::Clone(params) : YAML::Node(YAML::NodeType::Map);
     std::string file;
@@ -97,20 +112,61 @@ class ScriptedPolicy final : public PlayPolicy {
                          fmt::format("robot.params.actions[{}]", i), "move, say, look_at, point_at, cancel, wait",
                          location_of(a, file));
       }
+      read_repetition(a, i, file, script_.back());
     }
     std::stable_sort(script_.begin(), script_.end(), [](const auto& x, const auto& y) { return x.t < y.t; });
   }
   std::string name() const override { return "scripted"; }
-  void reset(const PolicyContext& /*context*/, Rng /*rng*/) override { next_ = 0; }
+  void reset(const PolicyContext& /*context*/, Rng /*rng*/) override {
+    progress_.assign(script_.size(), EntryProgress{});
+  }
+  /// The actions due by `observation.t`, in time order (entries due at the same time in script order).
   std::vector<Action> decide(const Observation& observation) override {
+    progress_.resize(script_.size());
     std::vector<Action> due;
-    while (next_ < script_.size() && script_[next_].t <= observation.t) due.push_back(script_[next_++].action);
-    return due;
+    while (true) {
+      std::size_t earliest = script_.size();
+      double earliest_t = std::numeric_limits<double>::infinity();
+      for (std::size_t i = 0; i < script_.size(); ++i) {
+        if (progress_[i].done) continue;
+        const double t = occurrence_time(i);
+        if (t <= observation.t && t < earliest_t) {
+          earliest = i;
+          earliest_t = t;
+        }
+      }
+      if (earliest == script_.size()) return due;
+      due.push_back(script_[earliest].action);
+      auto& p = progress_[earliest];
+      ++p.fired;
+      p.done = script_[earliest].every <= 0.0 || occurrence_time(earliest) > script_[earliest].until;
+    }
   }
 
  private:
+  /// Reads `every` and `until` of action `index` into `entry` (the schema checked their ranges).
+  static void read_repetition(const YAML::Node& a, std::size_t index, const std::string& file, TimedAction& entry) {
+    if (a["every"]) entry.every = a["every"].as<double>();
+    if (!a["until"]) return;
+    const auto key = fmt::format("robot.params.actions[{}].until", index);
+    if (!a["every"]) {
+      throw InputError("`until` ends a repetition: it needs `every`", key, "until together with every",
+                       location_of(a["until"], file));
+    }
+    entry.until = a["until"].as<double>();
+    if (entry.until < entry.t) {
+      throw InputError(fmt::format("until {} lies before the first time t = {}", entry.until, entry.t), key,
+                       fmt::format("a number ≥ t ({})", entry.t), location_of(a["until"], file));
+    }
+  }
+
+  /// Free-play time of the next occurrence of entry `index` (t + n · every, computed without accumulating error).
+  double occurrence_time(std::size_t index) const {
+    return script_[index].t + static_cast<double>(progress_[index].fired) * script_[index].every;
+  }
+
   std::vector<TimedAction> script_;
-  std::size_t next_ = 0;
+  std::vector<EntryProgress> progress_;
 };
 
 FREEPLAY_REGISTER_POLICY(ScriptedPolicy, "scripted", "replays a timed action file (a Wizard-of-Oz script)");

@@ -25,11 +25,12 @@ constexpr const char* kRobotHello = "Hello, I'm Nao. Today I'll be playing with 
 /// (SimWorld) holds the game, the children and the metrics; the robot side (RobotSide) decides for the robot.
 class Episode {
  public:
-  Episode(const Scenario& scenario, std::uint64_t seed, const SharedModels& models)
+  Episode(const Scenario& scenario, std::uint64_t seed, const SharedModels& models, int episode_index)
       : scenario_(scenario), seeds_(seed), world_(scenario, seeds_, models) {
     if (!world_.child_robot()) return;
     auto policy = policies::make_policy(scenario.robot.policy, scenario.robot.params);
     policies::PolicyContext context;
+    context.episode_index = episode_index;
     for (const auto& item : models.catalogue->items()) context.item_names.push_back(item.name);
     policy->reset(context, seeds_.stream("policy"));
     const auto disc = world_.reach();
@@ -227,15 +228,15 @@ class Episode {
 }  // namespace
 
 EpisodeResult run_episode(const Scenario& scenario, std::uint64_t seed, const SharedModels& models,
-                          const std::atomic<bool>& stop) {
-  Episode episode(scenario, seed, models);
+                          const std::atomic<bool>& stop, int episode_index) {
+  Episode episode(scenario, seed, models, episode_index);
   return episode.run(stop);
 }
 
 EpisodeResult run_episode(const Scenario& scenario, std::uint64_t seed, const SharedModels& models,
                           const std::atomic<bool>& stop, EpisodeObservers& observers, const EpisodeInfo& info,
                           ChildActionSource* children, RobotActionSource* robot, SignalSource* signals) {
-  Episode episode(scenario, seed, models);
+  Episode episode(scenario, seed, models, info.episode_index);
   return episode.run(stop, &observers, &info, children, robot, signals);
 }
 
@@ -245,8 +246,8 @@ EpisodeFunction episode_function(const SharedModels& models, ObserverFactory obs
     if (task.variant->scenario.kind == "controller") return run_controller_task(task, models, stop);
     const auto id = RunFolder::episode_file_id(task.variant->id, task.index);
     EpisodeObservers attached = observers ? observers(task.variant->scenario, run_dir) : EpisodeObservers{};
-    const EpisodeInfo info{&task.variant->scenario, id, task.seed};
-    auto result = attached.empty() ? run_episode(task.variant->scenario, task.seed, models, stop)
+    const EpisodeInfo info{&task.variant->scenario, id, task.seed, task.index};
+    auto result = attached.empty() ? run_episode(task.variant->scenario, task.seed, models, stop, task.index)
                                    : run_episode(task.variant->scenario, task.seed, models, stop, attached, info);
     EpisodeOutput out;
     if (result.aborted) return out;

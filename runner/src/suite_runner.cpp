@@ -8,6 +8,7 @@
 
 #include "freeplay/core/assets.hpp"
 #include "freeplay/core/rng.hpp"
+#include "freeplay/policies/play_policy.hpp"
 #include "freeplay/runner/progress.hpp"
 #include "freeplay/runner/run_folder.hpp"
 #include "freeplay/runner/summary.hpp"
@@ -48,6 +49,14 @@ std::string write_summaries(const std::filesystem::path& dir, const Suite& suite
   return markdown;
 }
 
+void check_policies(const Suite& suite) {
+  for (const auto& variant : suite.variants) {
+    const auto& scenario = variant.scenario;
+    if (scenario.kind == "controller" || scenario.condition != "child-robot") continue;
+    policies::make_policy(scenario.robot.policy, scenario.robot.params)->check_run(scenario.episodes);
+  }
+}
+
 RunReport run_suite(const Suite& suite, const RunOptions& options, const EpisodeFunction& run_episode,
                     std::atomic<bool>& stop) {
   if (options.shard_count < 1 || options.shard_index < 0 || options.shard_index >= options.shard_count) {
@@ -59,6 +68,7 @@ RunReport run_suite(const Suite& suite, const RunOptions& options, const Episode
     spdlog::warn("{}: dropped an incomplete last line of episodes.jsonl (an interrupted write); that episode "
                  "runs again", folder.dir().string());
   }
+  check_policies(suite);
   RunReport report;
   report.dir = folder.dir();
   std::vector<EpisodeTask> tasks;

@@ -110,3 +110,17 @@ TEST(YamlSchema, AnUnknownAliasIsASyntaxErrorWithItsLine) {
 TEST(YamlSchema, AFolderIsNotAFile) {
   EXPECT_THROW(load_yaml_file(::testing::TempDir()), InputError);
 }
+
+TEST(YamlSchema, AnAllowedNameEndingInAStarAcceptsItsPrefix) {
+  const auto schema = Schema::enumeration({"idle", "python:*"});
+  const auto check = [&](const std::string& value) {
+    ValidationErrors errors;
+    schema->validate(YAML::Node(value), "robot.policy", "test.yaml", errors);
+    return errors.empty();
+  };
+  EXPECT_TRUE(check("idle"));
+  EXPECT_TRUE(check("python:module:Class"));
+  EXPECT_FALSE(check("python"));
+  EXPECT_FALSE(check("pyth"));
+  EXPECT_FALSE(check("idle2"));
+}

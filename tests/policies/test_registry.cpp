@@ -50,3 +50,29 @@ TEST(ScriptedPolicy, RejectsAnActionWithTwoKinds) {
   EXPECT_THROW(make_policy("scripted", YAML::Load("actions: [{t: 1, dance: true}]")), InputError);
   EXPECT_THROW(make_policy("scripted", YAML::Load("{}")), InputError);
 }
+
+TEST(PolicyRegistry, PythonPoliciesOutsidePythonSayWhereToRunThem) {
+  try {
+    check_policy_available("python:my_policies:Tidy");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("python3 -m freeplay"), std::string::npos) << e.what();
+    EXPECT_EQ(e.key(), "robot.policy");
+  }
+  EXPECT_THROW(make_policy("python:my_policies:Tidy"), InputError);
+  const auto patterns = policy_name_patterns();
+  EXPECT_NE(std::find(patterns.begin(), patterns.end(), "python:*"), patterns.end());
+}
+
+TEST(PolicyRegistry, AFamilyBuildsEveryNameWithItsPrefix) {
+  std::string built;
+  register_policy_family("test-family:", [&](const std::string& name, const YAML::Node& params) {
+    built = name;
+    return make_policy("idle", params);
+  });
+  EXPECT_NO_THROW(check_policy_available("test-family:anything"));
+  EXPECT_EQ(make_policy("test-family:anything")->name(), "idle");
+  EXPECT_EQ(built, "test-family:anything");
+  const auto patterns = policy_name_patterns();
+  EXPECT_NE(std::find(patterns.begin(), patterns.end(), "test-family:*"), patterns.end());
+}

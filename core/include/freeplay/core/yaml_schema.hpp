@@ -72,7 +72,7 @@ class Schema {
                                             std::size_t max_size = static_cast<std::size_t>(-1));
   /// Any string.
   static std::shared_ptr<const Schema> string();
-  /// One of the given strings.
+  /// One of the given strings; an allowed string ending in `*` accepts every name starting with what precedes it.
   static std::shared_ptr<const Schema> enumeration(std::vector<std::string> allowed);
   /// An integer in [min, max].
   static std::shared_ptr<const Schema> integer(long long min, long long max);

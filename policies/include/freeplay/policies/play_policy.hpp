@@ -120,6 +120,7 @@ struct ActionResult {
 struct PolicyContext {
   std::string robot_seat = "yellow";  ///< the robot replaces the yellow child
   std::vector<std::string> item_names;  ///< every item of the game
+  int episode_index = 0;                ///< index of the episode in its run (a yoked policy replays that episode)
 };
 
 /// A robot play policy, called at the decision rate (10 Hz) by the episode loop.
@@ -136,6 +137,9 @@ class PlayPolicy {
   virtual void on_result(const ActionResult& result) { (void)result; }
   /// True when the policy uses perceived children (an asocial policy does not: perception can be skipped).
   virtual bool perceives_children() const { return false; }
+  /// Checks, before a run starts, that the policy can play episodes 0 … `episodes` − 1 (a yoked policy needs its
+  /// source's episodes); throws InputError naming what is missing.
+  virtual void check_run(int episodes) const { (void)episodes; }
 };
 
 /// Builds a policy from its validated parameters.
@@ -156,6 +160,19 @@ bool register_policy(PolicyInfo info);
 std::unique_ptr<PlayPolicy> make_policy(const std::string& name, const YAML::Node& params = {});
 /// Names of every registered policy.
 std::vector<std::string> policy_names();
+
+/// Builds a policy of a family from its full name (e.g. "python:module:Class") and its parameters.
+using PolicyFamilyFactory = std::function<std::unique_ptr<PlayPolicy>(const std::string& name, const YAML::Node& params)>;
+/// The prefix of the names of policies written in Python ("python:module:Class"); only the Python module builds them.
+inline constexpr const char* kPythonPolicyPrefix = "python:";
+/// Installs the builder of every policy whose name starts with `prefix` (a front such as the Python module calls
+/// it before running episodes); replaces an earlier builder of the same prefix.
+void register_policy_family(std::string prefix, PolicyFamilyFactory make);
+/// Name patterns a scenario may use besides the registered names ("python:*": accepted by every front, built only
+/// where a family builder is installed).
+std::vector<std::string> policy_name_patterns();
+/// Throws InputError when this program cannot build policy `name` (unknown, or a Python policy outside Python).
+void check_policy_available(const std::string& name);
 
 /// Registers `Class` (constructible from `const YAML::Node&`) under `name`: one line per new policy.
 #define FREEPLAY_REGISTER_POLICY(Class, name, description)                                                   \

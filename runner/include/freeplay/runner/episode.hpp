@@ -51,7 +51,7 @@ struct EpisodeResult {
 
 /// Runs one episode of `scenario` from root seed `seed`; returns with `aborted` when `stop` becomes true.
 EpisodeResult run_episode(const Scenario& scenario, std::uint64_t seed, const SharedModels& models,
-                          const std::atomic<bool>& stop);
+                          const std::atomic<bool>& stop, int episode_index = 0);
 /// Same, with observers that see every 10 Hz tick of every stage (cameras, recorders); the result is identical
 /// to the run without observers except for the fields the observers add to the record. With `children`, the
 /// children's free-play actions come from it instead of the synthetic agents (which then leave no annotations).

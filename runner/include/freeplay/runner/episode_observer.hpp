@@ -67,6 +67,7 @@ struct EpisodeInfo {
   const Scenario* scenario = nullptr;  ///< the scenario it runs
   std::string id;                      ///< file id (`<variant>-<index>`)
   std::uint64_t seed = 0;              ///< the episode's root seed
+  int episode_index = 0;               ///< index within its variant (the robot policy's PolicyContext gets it)
 };
 
 /// Reads an episode as it runs (cameras, recorders); never changes it.

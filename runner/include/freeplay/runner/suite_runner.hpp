@@ -72,7 +72,11 @@ std::uint64_t episode_seed(std::uint64_t scenario_seed, int index);
 /// True when episode (variant id, index) belongs to shard `shard_index` of `shard_count` (balanced, deterministic).
 bool in_shard(const std::string& variant_id, int index, int shard_index, int shard_count);
 
-/// Runs every unfinished episode of `suite` in this shard; writes episodes.jsonl, per-episode files,
+/// Builds each child-robot variant's policy once and asks it whether it can play the variant's episodes (bad
+/// policy parameters, a yoked policy's missing source episodes): InputError before any episode starts.
+void check_policies(const Suite& suite);
+
+/// Runs every unfinished episode of `suite` in this shard (after `check_policies`); writes episodes.jsonl, per-episode files,
 /// summary.csv and summary.md (also when interrupted, for the finished episodes).
 RunReport run_suite(const Suite& suite, const RunOptions& options, const EpisodeFunction& run_episode,
                     std::atomic<bool>& stop);

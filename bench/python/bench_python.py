@@ -1,0 +1,93 @@
+"""Speed of the freeplay Python module beside the C++ engine, on the same scenario (docs/python.md, Speed).
+
+  PYTHONPATH=build/python /usr/bin/python3 bench/python/bench_python.py [--episodes N] [--scenario FILE]
+
+1. a trivial Python policy (returns no action) against the C++ `idle` policy: simulated free-play seconds per
+   wall second on one worker;
+2. Env.step: wall time per decision of an Env rollout minus that of the same episodes run by `idle` in C++;
+3. VecEnv with 1 and 2 environments: decisions per wall second.
+Wall-clock numbers: run on a quiet machine and report them with the machine.
+"""
+
+import argparse
+import os
+import sys
+import tempfile
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import freeplay  # noqa: E402
+
+
+class Trivial(freeplay.Policy):
+    """Does nothing, in Python."""
+
+    def decide(self, observation):
+        return []
+
+
+def timed_run(scenario, overrides, episodes, jobs=1, repetitions=3):
+    """The fastest of `repetitions` runs: (wall seconds, simulated free-play seconds)."""
+    best = None
+    for _ in range(repetitions):
+        with tempfile.TemporaryDirectory() as out:
+            start = time.perf_counter()
+            run = freeplay.run(scenario, episodes=episodes, seed=1, jobs=jobs, overrides=overrides,
+                               out=os.path.join(out, "run"), events="none")
+            wall = time.perf_counter() - start
+            best = min(best or wall, wall)
+            simulated = sum(r["duration_s"] for r in run.records)
+    return best, simulated
+
+
+def env_rollouts(env, episodes):
+    """Wall seconds and steps of Env rollouts of episodes 0…episodes-1 (seed 1) that do nothing."""
+    steps = 0
+    start = time.perf_counter()
+    for i in range(episodes):
+        env.reset(seed=1, options={"episode": i})
+        while True:
+            *_, terminated, truncated, _ = env.step([])
+            steps += 1
+            if terminated or truncated:
+                break
+    return time.perf_counter() - start, steps
+
+
+def vec_rate(scenario, overrides, n, steps):
+    """Decisions per wall second of a VecEnv of n environments doing nothing."""
+    vec = freeplay.VecEnv(n, scenario, overrides)
+    vec.reset(seed=1)
+    start = time.perf_counter()
+    for _ in range(steps):
+        vec.step([[] for _ in range(n)])
+    return n * steps / (time.perf_counter() - start)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--episodes", type=int, default=6)
+    parser.add_argument("--scenario", default=os.path.join(os.path.dirname(__file__), "..", "..", "scenarios",
+                                                             "child-robot-asocial.yaml"))
+    parser.add_argument("--vec-steps", type=int, default=3000)
+    args = parser.parse_args()
+    short = ["protocol.greeting_s=0", "protocol.tutorial_s=1", "protocol.debriefing_s=0"]
+
+    timed_run(args.scenario, short + ["robot.policy=idle"], 1, repetitions=1)  # loads the shared models once
+    cpp_wall, cpp_sim = timed_run(args.scenario, short + ["robot.policy=idle"], args.episodes)
+    py_wall, py_sim = timed_run(args.scenario, short + ["robot.policy=python:bench_python:Trivial"], args.episodes)
+    print(f"free play, 1 worker, {args.episodes} episodes: C++ idle {cpp_sim / cpp_wall:,.0f}x real time; "
+          f"Python trivial {py_sim / py_wall:,.0f}x real time; ratio {py_wall / cpp_wall:.2f}")
+
+    env = freeplay.Env(args.scenario, short + ["robot.policy=idle"])
+    env_wall, steps = min(env_rollouts(env, args.episodes) for _ in range(3))
+    print(f"Env: {steps} steps in {env_wall:.2f} s; C++ idle run of the same episodes {cpp_wall:.2f} s; "
+          f"overhead {(env_wall - cpp_wall) / steps * 1e6:.1f} us per step")
+
+    one = max(vec_rate(args.scenario, short, 1, args.vec_steps) for _ in range(3))
+    two = max(vec_rate(args.scenario, short, 2, args.vec_steps) for _ in range(3))
+    print(f"VecEnv: 1 env {one:,.0f} steps/s, 2 envs {two:,.0f} steps/s, scaling {two / one:.2f}x")
+
+
+if __name__ == "__main__":
+    main()

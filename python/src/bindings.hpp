@@ -1,0 +1,35 @@
+#pragma once
+// The parts of the `freeplay` Python module (module.cpp puts them together): the policy's types, Python policies,
+// experiments (load, validate, run) and the episode stepper behind `freeplay.Env`.
+
+#include <pybind11/pybind11.h>
+#include <yaml-cpp/yaml.h>
+
+#include <string>
+#include <vector>
+
+#include "freeplay/policies/play_policy.hpp"
+#include "freeplay/runner/settings.hpp"
+
+namespace freeplay::python {
+
+namespace py = pybind11;
+
+/// Binds Observation and its parts, the actions, ActionResult, PolicyContext and Rng.
+void bind_types(py::module_& m);
+/// Installs the `python:module:Class` policy family in the registry.
+void bind_policies(py::module_& m);
+/// Binds loading, validating and running scenarios and suites, and the `run`/`suite` command line.
+void bind_experiments(py::module_& m);
+/// Binds the episode stepper behind `freeplay.Env` and `freeplay.VecEnv`.
+void bind_env(py::module_& m);
+
+/// The actions a Python `decide` returned (a list of actions, one action, or None); throws InputError naming the
+/// policy and the element that is not an action.
+std::vector<policies::Action> actions_from_python(const py::handle& returned, const std::string& policy);
+/// A YAML node as Python data (maps → dict, sequences → list, scalars → bool, int, float or str).
+py::object yaml_to_python(const YAML::Node& node);
+/// The names a scenario may use in this module: the C++ policies and `python:*`.
+runner::ScenarioVocabulary python_vocabulary();
+
+}  // namespace freeplay::python
