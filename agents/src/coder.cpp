@@ -215,10 +215,10 @@ void PairCoder::track_task_and_attitude(double t, double dt, int who, const Obse
   // of the time with recent considered play, other play, and friendly acts.
   const auto recent = [&](double since) { return t - since <= params_.evidence_hold_s ? 1.0 : 0.0; };
   const double w = 1.0 - std::exp(-dt / params_.judgement_window_s);
-  me.constructive += w * (recent(std::max(me.last_constructive_t, me.last_directive_t)) - me.constructive);
+  me.constructive += w * (recent(std::max({me.last_constructive_t, me.last_directive_t, me.last_discussion_t})) -
+                          me.constructive);
   // Discussing what to do next is planning the play; chatting otherwise is play without a plan.
   const bool discussing = t - me.last_discussion_t <= params_.discussion_hold_s;
-  me.constructive += discussing ? w * (1.0 - me.constructive) : 0.0;
   // Talking while playing with purpose is part of that play; chatting while not playing with purpose is off task.
   const bool chatting = !discussing && t - me.last_constructive_t > params_.judgement_window_s;
   me.aimless += w * (recent(std::max(me.last_aimless_t, chatting ? me.last_friendly_t : -1e9)) - me.aimless);
@@ -272,12 +272,13 @@ SocialEngagement PairCoder::candidate(double t, int who) const {
     return SocialEngagement::Cooperative;
   }
   // A coder codes the stretch, not each act: cooperation once seen goes on while both keep working on the shared
-  // scene (each still followed the other within the window, or the child still talks to the other about it).
+  // scene (each followed the other or spoke to it within `cooperation_hold_s`).
   const bool coded_cooperative =
       coded_[static_cast<std::size_t>(who)][static_cast<std::size_t>(Axis::SocialEngagement)].label ==
       static_cast<std::uint8_t>(SocialEngagement::Cooperative);
-  const bool still_together = (i_talk || me.follows.since(coop_from) >= 1) &&
-                              (them.follows.since(coop_from) >= 1 || them.interaction.since(from) >= 1);
+  const double hold_from = t - params_.cooperation_hold_s;
+  const bool still_together = (me.interaction.since(hold_from) >= 1 || me.follows.since(hold_from) >= 1) &&
+                              (them.follows.since(hold_from) >= 1 || them.interaction.since(hold_from) >= 1);
   if (coded_cooperative && still_together) return SocialEngagement::Cooperative;
   // Associative — "the child itself initiates or responds to interaction about the play (talks about it, offers or
   // shares items, follows the partner's activity), no shared goal": the child's own interaction, taken up by the

@@ -13,8 +13,8 @@ void ContingencyDetector::advance(double t, double dt) {
   const double keep = p.memory_s > 0.0 ? std::exp(-dt / p.memory_s) : 0.0;
   bids_ *= keep;
   answered_ *= keep;
-  free_time_s_ *= keep;
-  free_acts_ *= keep;
+  time_s_ *= keep;
+  acts_ *= keep;
   interruptions_ *= p.interruption_tau_s > 0.0 ? std::exp(-dt / p.interruption_tau_s) : 0.0;
   salience_ += (1.0 - salience_) * (p.habituation_recovery_s > 0.0 ? 1.0 - std::exp(-dt / p.habituation_recovery_s) : 1.0);
   int kept = 0;
@@ -27,7 +27,7 @@ void ContingencyDetector::advance(double t, double dt) {
     }
   }
   open_count_ = kept;
-  if (open_count_ == 0) free_time_s_ += dt;
+  time_s_ += dt;
 }
 
 void ContingencyDetector::close(const OpenBid& bid) {
@@ -91,6 +91,9 @@ bool ContingencyDetector::about(const OpenBid& bid, PartnerActKind kind, int ite
 
 ActClass ContingencyDetector::on_partner_act(double t, PartnerActKind kind, int item, const Vec2& point) {
   const bool on_play = kind == PartnerActKind::LookAtMyPlay || kind == PartnerActKind::TouchMyPlay;
+  // The base rate counts every act of the kinds that could answer me, whenever it comes (Watson's unconditional
+  // probability of the stimulus); acts on the tray count only where they are about my play.
+  if (!on_play || about_my_play(item, point)) acts_ += 1.0;
   for (int i = 0; i < open_count_; ++i) {
     OpenBid& bid = open_[static_cast<std::size_t>(i)];
     if (bid.answered || t < bid.opened || !about(bid, kind, item, point)) continue;
@@ -98,10 +101,7 @@ ActClass ContingencyDetector::on_partner_act(double t, PartnerActKind kind, int 
     ++answered_new_;
     return ActClass::Response;
   }
-  // The base rate counts the same kinds of act while no bid of mine is open; acts on the tray count only where
-  // they would have been about my play.
   if (open_count_ > 0 || (on_play && !about_my_play(item, point))) return ActClass::Unrelated;
-  free_acts_ += 1.0;
   return ActClass::Spontaneous;
 }
 
@@ -119,8 +119,8 @@ double ContingencyDetector::answered_share() const {
 
 double ContingencyDetector::base_share() const {
   const ContingencyParams& p = *params_;
-  const double rate_per_s = (free_acts_ + p.prior_free_time_s * p.prior_base_rate_per_min / 60.0) /
-                            (free_time_s_ + p.prior_free_time_s);
+  const double rate_per_s = (acts_ + p.prior_free_time_s * p.prior_base_rate_per_min / 60.0) /
+                            (time_s_ + p.prior_free_time_s);
   return 1.0 - std::exp(-rate_per_s * p.response_window_s);
 }
 

@@ -197,6 +197,7 @@ std::vector<Field> coder_fields(CoderParams& co) {
           {"talk_play_window_s", &co.talk_play_window_s, 0.1, 600},
           {"interaction_window_s", &co.interaction_window_s, 0.1, 600},
           {"cooperation_window_s", &co.cooperation_window_s, 0.1, 600},
+          {"cooperation_hold_s", &co.cooperation_hold_s, 0, 600},
           {"discussion_hold_s", &co.discussion_hold_s, 0, 600},
           {"active_window_s", &co.active_window_s, 0.1, 600},
           {"watch_share", &co.watch_share, 0, 1},

@@ -5,7 +5,7 @@
 // A partner's act answers me only when it is contingent on something I did: it follows my act or bid within a
 // short window AND is about it (my item or area, my utterance, my gaze). The detector keeps Watson's two
 // conditional rates as running, forgetting counts: how often my bids were followed by such an act, and the base
-// rate of the same acts while I did nothing. Its contingency estimate is the normalised difference of the two
+// rate of the same acts whenever they come. Its contingency estimate is the normalised difference of the two
 // (Cheng's causal power of ΔP): a partner who does a lot regardless of me scores as low as one who does nothing.
 // It also tracks habituation to non-contingent attention and how often the partner interrupts the child's play.
 
@@ -45,8 +45,7 @@ class ContingencyDetector {
   /// A detector with `params` (response window, memory, priors, habituation, interruptions).
   explicit ContingencyDetector(const ContingencyParams& params);
 
-  /// Advances the clock to `t` by `dt`: forgets, closes expired bids, accumulates bid-free exposure, recovers
-  /// habituation.
+  /// Advances the clock to `t` by `dt`: forgets, closes expired bids, accumulates exposure, recovers habituation.
   void advance(double t, double dt);
   /// I make a bid at `t` that lasts `duration_s` (a drag's movement) before its response window opens; `item` and
   /// `point` say what a response must be about (−1 and my area for looks and talk); `seeking` when I want an answer
@@ -63,7 +62,7 @@ class ContingencyDetector {
   double contingency() const;
   /// P(a bid of mine was answered within the window), with the prior.
   double answered_share() const;
-  /// P(at least one act of the kind that could answer me in a window of the same length while I had no bid open).
+  /// P(at least one act of the kinds that could answer me in any window of the same length): the base rate.
   double base_share() const;
   /// Salience of non-contingent attention in [0, 1]: 1 when fresh, lower after repetition (habituation).
   double salience() const { return salience_; }
@@ -97,8 +96,8 @@ class ContingencyDetector {
   int open_count_ = 0;
   double bids_ = 0.0;           ///< forgetting count of closed bids
   double answered_ = 0.0;       ///< … of those answered
-  double free_time_s_ = 0.0;    ///< forgetting bid-free exposure
-  double free_acts_ = 0.0;      ///< forgetting count of partner acts in bid-free time
+  double time_s_ = 0.0;         ///< forgetting exposure
+  double acts_ = 0.0;           ///< forgetting count of the partner's acts that could answer me
   double salience_ = 1.0;
   double interruptions_ = 0.0;
   int my_item_ = -1;

@@ -157,6 +157,7 @@ struct CoderParams {
   double talk_play_window_s = 10.0;  ///< words to the other are about the play while either played this recently (s)
   double interaction_window_s = 20.0;///< associative: the child's acts of interaction are judged over this window (s)
   double cooperation_window_s = 20.0;///< cooperative: turn-taking on one scene is judged over this window (s)
+  double cooperation_hold_s = 10.0; ///< cooperation goes on while both followed or spoke to the other this recently (s)
   double discussion_hold_s = 10.0;   ///< taking part in talk about what to do next shows cooperation this long (s)
   double active_window_s = 6.0;      ///< a child touched the screen within this time counts as playing (s)
   double watch_share = 0.5;          ///< share of the last `watch_window_s` spent watching the other's play
