@@ -7,7 +7,25 @@ find_package(fmt REQUIRED)
 find_package(spdlog REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(box2d 2.4 REQUIRED)
-find_package(OpenCV 4.6 REQUIRED COMPONENTS core imgproc imgcodecs videoio)
+if(FREEPLAY_MAIN_JOB_ONLY)
+  # The main job uses three OpenCV modules. Debian ships OpenCV's CMake package only in libopencv-dev, which pulls in
+  # every module (VTK, the DNN, GUI and contrib modules among them: 111 more packages, 85 MB more to download), so
+  # without it the main job finds the three module packages' headers and libraries itself.
+  find_package(OpenCV 4.6 QUIET COMPONENTS core imgproc videoio)
+  if(NOT OpenCV_FOUND)
+    find_path(FREEPLAY_OPENCV_INCLUDE_DIR opencv2/core.hpp PATH_SUFFIXES opencv4 REQUIRED)
+    set(OpenCV_LIBS)
+    foreach(module core imgproc videoio)
+      find_library(FREEPLAY_OPENCV_${module}_LIBRARY opencv_${module} REQUIRED)
+      add_library(opencv_${module} SHARED IMPORTED)
+      set_target_properties(opencv_${module} PROPERTIES IMPORTED_LOCATION "${FREEPLAY_OPENCV_${module}_LIBRARY}"
+                            INTERFACE_INCLUDE_DIRECTORIES "${FREEPLAY_OPENCV_INCLUDE_DIR}")
+      list(APPEND OpenCV_LIBS opencv_${module})
+    endforeach()
+  endif()
+else()
+  find_package(OpenCV 4.6 REQUIRED COMPONENTS core imgproc imgcodecs videoio)
+endif()
 find_package(mujoco 2.2 REQUIRED)
 # Debian's mujoco::mujoco names /usr/include/libqhull_r/, which exists only with libqhull-dev (not needed by
 # MuJoCo's public headers): drop include folders that do not exist so CMake accepts the target.
@@ -51,8 +69,12 @@ endif()
 # Debian's ROS 1 bag libraries (librosbag-storage-dev and the message packages): one imported target. Their headers
 # need the extra include folders below (engineering-notes.md §1). roslz4 and bz2 are rosbag's decompressors, which
 # the bag check (recording/src/bag_check.cpp) calls itself.
-find_library(FREEPLAY_ROSBAG_STORAGE_LIBRARY NAMES rosbag_storage)
-if(FREEPLAY_ROSBAG_STORAGE_LIBRARY AND EXISTS /usr/include/rosbag/bag.h AND EXISTS /usr/include/visualization_msgs)
+if(NOT FREEPLAY_MAIN_JOB_ONLY)  # the main job records nothing
+  find_library(FREEPLAY_ROSBAG_STORAGE_LIBRARY NAMES rosbag_storage)
+endif()
+if(FREEPLAY_MAIN_JOB_ONLY)
+  set(FREEPLAY_HAVE_ROSBAG OFF)
+elseif(FREEPLAY_ROSBAG_STORAGE_LIBRARY AND EXISTS /usr/include/rosbag/bag.h AND EXISTS /usr/include/visualization_msgs)
   add_library(ros::rosbag_storage INTERFACE IMPORTED)
   set(FREEPLAY_ROS_LIBRARIES)
   foreach(lib rosbag_storage roscpp_serialization rostime cpp_common console_bridge boost_filesystem class_loader

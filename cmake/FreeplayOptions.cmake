@@ -11,10 +11,31 @@ if(FREEPLAY_SANITIZE)
   add_link_options(-fsanitize=address,undefined)
 endif()
 
+# ccache, when installed, in front of every compile (FREEPLAY_CCACHE=OFF, or CCACHE_DISABLE=1 for one build, turns it
+# off). Its base_dir is the source folder, so the cache keys hold paths relative to the build folder: a second clone,
+# a worktree or a CI checkout in another folder gets the same hits.
 find_program(CCACHE_PROGRAM ccache)
-if(CCACHE_PROGRAM)
-  set(CMAKE_CXX_COMPILER_LAUNCHER ${CCACHE_PROGRAM})
+option(FREEPLAY_CCACHE "Compile through ccache when it is installed" ON)
+# The sloppiness lets ccache cache the units that use a precompiled header (ccache's manual, "Precompiled headers").
+if(CCACHE_PROGRAM AND FREEPLAY_CCACHE)
+  set(CMAKE_CXX_COMPILER_LAUNCHER ${CMAKE_COMMAND} -E env CCACHE_BASEDIR=${PROJECT_SOURCE_DIR}
+      CCACHE_SLOPPINESS=pch_defines,time_macros,include_file_mtime,include_file_ctime ${CCACHE_PROGRAM})
 endif()
+
+# Precompiled headers for the libraries with the most units (docs/performance.md, "Compile time"): the third-party
+# headers every unit of the library includes anyway (Eigen, nlohmann-json, yaml-cpp, fmt; OpenCV where the library
+# uses it), parsed once per library instead of once per unit. FREEPLAY_PCH=OFF builds without them (e.g. to check
+# that every file includes what it uses).
+option(FREEPLAY_PCH "Precompile the common third-party headers of the largest libraries" ON)
+set(FREEPLAY_PCH_COMMON <algorithm> <filesystem> <functional> <map> <memory> <optional> <string> <vector>
+    <Eigen/Geometry> <nlohmann/json.hpp> <yaml-cpp/yaml.h> <fmt/format.h>)
+
+# freeplay_precompile_headers(TARGET [HEADERS...]): the common headers and HEADERS precompiled for TARGET's units.
+function(freeplay_precompile_headers target)
+  if(FREEPLAY_PCH)
+    target_precompile_headers(${target} PRIVATE ${FREEPLAY_PCH_COMMON} ${ARGN})
+  endif()
+endfunction()
 
 # freeplay_add_library(NAME folder SOURCES ... DEPS ...): a library with public headers in <folder>/include.
 function(freeplay_add_library name)

@@ -7,13 +7,7 @@ dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 fail=0
 short=(--set protocol.greeting_s=2 --set protocol.tutorial_s=2 --set protocol.freeplay_cap_s=20 --set protocol.debriefing_s=2)
-expect() {  # expect STATUS PATTERN -- command...
-  local status=$1 pattern=$2; shift 3
-  local out; out=$("$@" 2>&1); local got=$?
-  if [ "$got" -ne "$status" ] || ! grep -qF -- "$pattern" <<<"$out"; then
-    echo "FAIL: $* → status $got (want $status), output:"; echo "$out" | tail -5; echo "  (wanted: $pattern)"; fail=1
-  fi
-}
+source "$(dirname "${BASH_SOURCE[0]}")/expect.sh"
 check() {  # check DESCRIPTION -- test...
   local what=$1; shift 2
   if ! "$@"; then echo "FAIL: $what"; fail=1; fi

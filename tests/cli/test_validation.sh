@@ -5,13 +5,7 @@ freeplay=$1
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 fail=0
-expect() {  # expect STATUS PATTERN -- command...
-  local status=$1 pattern=$2; shift 3
-  local out; out=$("$@" 2>&1); local got=$?
-  if [ "$got" -ne "$status" ] || ! grep -qF -- "$pattern" <<<"$out"; then
-    echo "FAIL: $* → status $got (want $status), output:"; echo "$out" | head -5; echo "  (wanted: $pattern)"; fail=1
-  fi
-}
+source "$(dirname "${BASH_SOURCE[0]}")/expect.sh"
 printf 'name: x\ncondition: child-child\nplanner:\n  nmae: astar\n' > "$dir/unknown-key.yaml"
 printf 'name: x\ncondition: child-child\nepisodes: many\n' > "$dir/wrong-type.yaml"
 printf 'name: x\ncondition: child-child\nchildren:\n  purple: {age: 12}\n' > "$dir/range.yaml"

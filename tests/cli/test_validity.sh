@@ -8,13 +8,7 @@ scenarios=$2
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 fail=0
-expect() {  # expect STATUS PATTERN -- command...
-  local status=$1 pattern=$2; shift 3
-  local out; out=$("$@" 2>&1); local got=$?
-  if [ "$got" -ne "$status" ] || ! grep -qF -- "$pattern" <<<"$out"; then
-    echo "FAIL: $* → status $got (want $status), output:"; echo "$out" | tail -5; echo "  (wanted: $pattern)"; fail=1
-  fi
-}
+source "$(dirname "${BASH_SOURCE[0]}")/expect.sh"
 expect 2 "--sessions" -- "$freeplay" validity --sessions 1 --out "$dir/p0"
 expect 2 "--jobs" -- "$freeplay" validity --jobs 0 --out "$dir/p0"
 touch "$dir/file"
