@@ -163,7 +163,7 @@ void ChildAgent::observe_partner_acts(double t, const PartnerView& partner, int 
     const ActClass kind = contingency_.on_partner_act(t, PartnerActKind::TouchMyPlay, touch.item, touch.point);
     if (!taken && kind == ActClass::Response) {
       on_response(t, r.act_weight);
-      on_partner_bid(t, /*joint=*/true, /*spoken=*/false, /*contingent=*/true);
+      on_partner_bid(t, /*joint=*/true, /*spoken=*/false);
       partner_joint_ = std::min(1.0, partner_joint_ + 0.35);
     } else if ((touch.point - my_last_point_).norm() < 2.0 * c.about_distance_m) {
       partner_joint_ = std::min(1.0, partner_joint_ + 0.15);
@@ -187,11 +187,11 @@ void ChildAgent::observe_partner_acts(double t, const PartnerView& partner, int 
   if (looking && !prev_partner_looking_) {
     if (contingency_.on_partner_act(t, PartnerActKind::LookAtMe, -1, my_last_point_) == ActClass::Response) {
       on_response(t, r.look_weight);
-      on_partner_bid(t, /*joint=*/false, /*spoken=*/false, /*contingent=*/true);
+      on_partner_bid(t, /*joint=*/false, /*spoken=*/false);
       partner_attention_ = std::min(1.0, partner_attention_ + 0.25);
     } else {
       on_attention(r.look_weight);
-      on_partner_bid(t, /*joint=*/false, /*spoken=*/false, /*contingent=*/false);
+      on_partner_bid(t, /*joint=*/false, /*spoken=*/false);
     }
   }
   prev_partner_looking_ = looking;
@@ -208,11 +208,11 @@ void ChildAgent::observe_partner_acts(double t, const PartnerView& partner, int 
     const bool proposal = partner.speech->kind == Utterance::Proposal;
     if (contingency_.on_partner_act(t, PartnerActKind::TalkToMe, -1, my_last_point_) == ActClass::Response) {
       on_response(t, r.talk_weight);
-      on_partner_bid(t, proposal, /*spoken=*/true, /*contingent=*/true);
+      on_partner_bid(t, proposal, /*spoken=*/true);
       partner_attention_ = std::min(1.0, partner_attention_ + 0.35);
     } else {
       on_attention(r.talk_weight);
-      on_partner_bid(t, proposal, /*spoken=*/true, /*contingent=*/false);
+      on_partner_bid(t, proposal, /*spoken=*/true);
     }
   }
 }
@@ -749,11 +749,11 @@ double ChildAgent::reciprocity_window() const {
   return pa.reciprocity_window_s * std::max(0.3, 1.0 + pa.window_per_year * (profile_.age_years - 6.0));
 }
 
-void ChildAgent::on_partner_bid(double t, bool joint, bool spoken, bool contingent) {
+void ChildAgent::on_partner_bid(double t, bool joint, bool spoken) {
   if (answer_.active || quit_) return;
-  // A bid that answers mine is taken up as such; bids that answer nothing of mine draw fewer answers as they
-  // habituate, unless the partner has shown itself contingent on me.
-  const double engaging = contingent ? 1.0 : std::max(contingency_.contingency(), contingency_.salience());
+  // How readily I take up a partner's bid depends on how contingent I have found it, or on the bid's freshness
+  // while its kind of attention has not yet habituated; a single bid that happens to follow mine proves nothing.
+  const double engaging = std::max(contingency_.contingency(), contingency_.salience());
   if (!rng_.bernoulli(answer_probability() * engaging)) return;
   const PartnershipParams& pa = params_->partnership;
   answer_.active = true;

@@ -60,7 +60,10 @@ void PairCoder::track(double t, double dt, int who, const ObservedPlayer& self) 
   track_touch(t, who, self);
   track_words(t, who, self);
   track_task_and_attitude(t, dt, who, self);
-  if (looks_at_other(self.gaze)) me.last_look_at_other_t = t;
+  // A look that lands on the other (not a gaze resting on it all along) is attention paid to it.
+  if (looks_at_other(self.gaze) && !looks_at_other(prev_gaze_[static_cast<std::size_t>(who)])) {
+    me.last_look_at_other_t = t;
+  }
   // Onlooker — "looking at the other for a prolonged period, without engaging": the gaze rests on the other's
   // finger, on the item it moves, or on the other itself while it plays.
   bool watching = false;

@@ -103,7 +103,7 @@ class ChildAgent {
   void update_gaze(double t, const ChildPerception& seen, ChildActions& out);
   void update_speech(double t, double dt, ChildActions& out);
   void make_bid(double t, BidKind kind, int item, const Vec2& point, double duration_s, bool seeking);
-  void on_partner_bid(double t, bool joint, bool spoken, bool contingent);
+  void on_partner_bid(double t, bool joint, bool spoken);
   void answer_partner(double t, ChildActions& out);
   double answer_probability() const;
   double bid_scale() const;
