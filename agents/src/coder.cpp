@@ -262,7 +262,8 @@ SocialEngagement PairCoder::candidate(double t, int who) const {
   // commenting, answering) within the window. Acting near the other or on its items without a word can be play
   // alongside it, and a glance that answers a comment is not associative play.
   const double from = t - params_.interaction_window_s;
-  const bool i_talk = me.interaction.since(from) >= 1;
+  const int my_words = me.interaction.since(from);
+  const bool i_talk = my_words >= 1;
   // Cooperative — "the two children discuss what to do next: this sequence is annotated as a cooperative
   // behaviour" (the paper), and "the child's own acts are coordinated with the partner's towards a shared product
   // over a sustained stretch (building one scene, taking turns on one item)": while interacting, the child
@@ -289,7 +290,8 @@ SocialEngagement PairCoder::candidate(double t, int who) const {
   // activity, while play goes on. Anything the other does alone never makes me associative.
   const bool taken_up = them.interaction.since(from) >= 1 || them.last_look_at_other_t >= from ||
                         me.follows.since(from) >= 1;
-  if (i_talk && taken_up && (i_play || they_play)) return SocialEngagement::Associative;
+  // One remark is not yet an interaction: the child keeps it up (two or more within the window).
+  if (my_words >= 2 && taken_up && (i_play || they_play)) return SocialEngagement::Associative;
   // Parallel — "similar materials or activity near the partner, without interacting": both play on the tray; a
   // partner pausing beside a child that plays is still seen as playing alongside for a while longer. A partner who
   // has stopped to watch me is not playing alongside me.
