@@ -139,15 +139,16 @@ TEST(Coder, AttentionTheOtherNeverReturnsIsNoExchange) {
 }
 
 TEST(Coder, OneExchangeIsOneBoutForItsWindow) {
-  // One spoken exchange in a minute of parallel play: one associative bout for each child as long as its words lie
-  // within the interaction window, then parallel again.
+  // One spoken exchange (two remarks each) in a minute of parallel play: one associative bout for each child while
+  // both its remarks lie within the interaction window, then parallel again.
   PairCoder coder(params().coder, false);
   for (long tick = 0; tick < 600; ++tick) {
     const double t = tick * 0.1;
     ObservedPlayer a = plays(t, 0.1, 0);
     ObservedPlayer b = plays(t, 0.45, 5, 3.0);
-    if (t > 30.0 && t < 32.0) a = speaks(a, t, Utterance::Comment, 100.0, 30.05);
-    if (t > 31.0 && t < 32.0) b = speaks(b, t, Utterance::Comment, 100.0, 31.05);
+    // Each child keeps the exchange up for two remarks, 4 s apart.
+    if (t > 30.0 && t < 36.0) a = speaks(a, t, Utterance::Comment, 4.0, 30.05);
+    if (t > 31.0 && t < 37.0) b = speaks(b, t, Utterance::Comment, 4.0, 31.05);
     coder.observe(t, a, b);
   }
   coder.finish(60.0);
@@ -160,7 +161,8 @@ TEST(Coder, OneExchangeIsOneBoutForItsWindow) {
       associative_s += bout.stop - bout.start;
     }
     EXPECT_EQ(associative_bouts, 1);
-    EXPECT_NEAR(associative_s, params().coder.interaction_window_s, 1.5);
+    // From each child's second remark until its first leaves the window.
+    EXPECT_NEAR(associative_s, params().coder.interaction_window_s - 4.0, 1.5);
   }
 }
 
