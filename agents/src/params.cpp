@@ -302,8 +302,6 @@ void emit_label_map(YAML::Emitter& out, Axis axis, const std::array<double, kMax
 
 }  // namespace
 
-std::string_view feature_name(Feature feature) { return kFeatureNames[static_cast<std::size_t>(feature)]; }
-
 ChildModelParams parse_child_model_params(std::string_view yaml_text, const std::string& file) {
   YAML::Node root;
   try {

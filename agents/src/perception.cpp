@@ -45,7 +45,6 @@ std::optional<GazeKind> parse_gaze_kind(std::string_view name) { return parse_na
 std::optional<Utterance> parse_utterance(std::string_view name) { return parse_name<Utterance>(kUtteranceNames, name); }
 std::optional<Addressee> parse_addressee(std::string_view name) { return parse_name<Addressee>(kAddresseeNames, name); }
 
-double seat_edge_y(Seat seat) { return seat == Seat::Bottom ? -sim::kScreenHeightM : 0.0; }
 
 double depth_from_seat(Seat seat, const Vec2& p) {
   return seat == Seat::Bottom ? p.y() + sim::kScreenHeightM : -p.y();

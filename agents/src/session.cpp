@@ -313,8 +313,6 @@ ChildOutcome outcome_of(const ChildAgent& child, ChildTimeline coded) {
 
 }  // namespace
 
-std::string_view condition_name(Condition condition) { return condition == Condition::ChildChild ? "cc" : "cr"; }
-
 SessionResult simulate_session(const ChildModelParams& params, const SessionConfig& config, std::uint64_t seed) {
   const SeedSequence seeds(seed);
   const bool cc = config.condition == Condition::ChildChild;

@@ -258,10 +258,6 @@ SceneKind scene_kind_from_name(std::string_view name) {
   throw InputError("unknown scene '" + std::string(name) + "'", "scene", "child-child, child-robot");
 }
 
-std::string_view scene_kind_name(SceneKind kind) {
-  return kind == SceneKind::child_child ? "child-child" : "child-robot";
-}
-
 std::string_view child_role_name(ChildRole role) { return role == ChildRole::purple ? "purple" : "yellow"; }
 
 Eigen::Matrix3d CameraIntrinsics::matrix() const {

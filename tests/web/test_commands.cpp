@@ -28,6 +28,17 @@ TEST(WebCommands, MoveIsNormalisedAndRoutedToTheRobot) {
   EXPECT_DOUBLE_EQ(c.args["x"].get<double>(), 0.3);
 }
 
+TEST(WebCommands, IllFormedUtf8AndOverflowingNumbersAreBadRequests) {
+  // Both used to escape as 500: the overflow is not a parse_error, and the message quoted the invalid bytes.
+  auto [status, message] = refusal("{\"type\":\"say\",\"text\":\"caf\xC3\x28\"}");
+  EXPECT_EQ(status, 400);
+  EXPECT_NE(message.find("not JSON"), std::string::npos) << message;
+  for (const char ch : message) EXPECT_TRUE(ch >= 0x20 && ch < 0x7f) << message;
+  std::tie(status, message) = refusal(R"({"type":"sparc_timeout","seconds":1e999})");
+  EXPECT_EQ(status, 400);
+  EXPECT_NE(message.find("not JSON"), std::string::npos) << message;
+}
+
 TEST(WebCommands, MalformedAndOutOfRangeCommandsAreRefusedWithTheAllowedValues) {
   auto [status, message] = refusal("{not json");
   EXPECT_EQ(status, 400);

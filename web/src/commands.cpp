@@ -118,8 +118,13 @@ Command parse_command(const std::string& body, const std::vector<std::string>& i
   nlohmann::json json;
   try {
     json = nlohmann::json::parse(body);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw CommandError(400, fmt::format("the body is not JSON: {}", e.what()));
+  } catch (const nlohmann::json::exception& e) {  // a syntax error, ill-formed UTF-8, or a number like 1e999
+    // The parser's message quotes the bytes it read last: only printable ASCII of them goes into the reply.
+    std::string message = e.what();
+    for (char& ch : message) {
+      if (static_cast<unsigned char>(ch) < 0x20 || static_cast<unsigned char>(ch) >= 0x7f) ch = '?';
+    }
+    throw CommandError(400, fmt::format("the body is not JSON: {}", message));
   }
   if (!json.is_object() || !json.contains("type") || !json["type"].is_string()) {
     throw CommandError(400, fmt::format("a command is a JSON object with a string 'type' (allowed: {})", command_types()));

@@ -34,7 +34,8 @@ bool draws_landscape(PaletteColour colour);
 /// What a child visibly did this tick: its actions, and its fingers on the screen (`touches`, first `touch_count`).
 ObservedPlayer observed_child(const ChildActions& actions, const std::array<SeenTouch, 6>& touches, int touch_count);
 
-/// Codes the social engagement of both players of one session, tick by tick.
+/// Codes both players of one session on the three axes (task engagement, social engagement, social attitude), tick
+/// by tick.
 class PairCoder {
  public:
   /// A coder with `params`; `second_is_robot` when the second player is the robot (it is not coded then).

@@ -30,8 +30,6 @@ enum class Feature : std::uint8_t {
 
 /// Number of features.
 inline constexpr std::size_t kFeatureCount = static_cast<std::size_t>(Feature::Count);
-/// YAML name of a feature ("motivation", "partner_joint", …).
-std::string_view feature_name(Feature feature);
 
 /// The semi-Markov process of one axis: log-normal dwell times and feature-modulated transition weights.
 struct AxisModel {

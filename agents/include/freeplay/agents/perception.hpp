@@ -139,8 +139,6 @@ struct ChildActions {
 /// Which long side of the screen a child sits on.
 enum class Seat : std::uint8_t { Bottom, Top };
 
-/// The `sandtray` y of a seat's screen edge (Bottom: −0.335, Top: 0).
-double seat_edge_y(Seat seat);
 /// Distance of `p` from the seat's screen edge (m).
 double depth_from_seat(Seat seat, const Vec2& p);
 

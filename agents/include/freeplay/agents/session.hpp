@@ -19,8 +19,6 @@ namespace freeplay::agents {
 /// Who plays with the purple child.
 enum class Condition : std::uint8_t { ChildChild, ChildRobot };
 
-/// "cc" / "cr".
-std::string_view condition_name(Condition condition);
 
 /// Settings of one simulated session.
 struct SessionConfig {

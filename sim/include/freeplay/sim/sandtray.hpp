@@ -1,8 +1,5 @@
 #pragma once
 // The simulated sandtray: the real QML free-play game (items, touches, robot finger, drawing, zones, states).
-//
-// CONTRACT DRAFT written by the lead before implementation. The sim-physics owner implements it and may add
-// members; other components rely on the names below, so do not rename or remove them.
 
 #include <cstdint>
 #include <memory>

@@ -75,7 +75,7 @@ class Stage {
 namespace freeplay::stage {
 
 /// A procedural stand-in for the sandtray game picture (grass, a lake, a few coloured blobs, a red marker in
-/// the top-left corner), BGR, `width`×`height`; used until the live game image is wired in.
+/// the top-left corner), BGR, `width`×`height`: a fixed test picture for rendering tests and benchmarks.
 cv::Mat demo_screen_image(int width = 1920, int height = 1080);
 
 }  // namespace freeplay::stage

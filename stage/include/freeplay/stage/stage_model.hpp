@@ -21,8 +21,6 @@ enum class SceneKind { child_child, child_robot };
 
 /// Parses "child-child" / "child-robot"; throws InputError naming the allowed values.
 SceneKind scene_kind_from_name(std::string_view name);
-/// "child-child" or "child-robot".
-std::string_view scene_kind_name(SceneKind kind);
 
 /// The two child seats, named after the bib colour (yellow sits where the NAO stands in child-robot scenes).
 enum class ChildRole { purple, yellow };
