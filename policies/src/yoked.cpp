@@ -222,8 +222,8 @@ class YokedPolicy final : public PlayPolicy {
   fs::path event_log(int index) const {
     const auto& ids = source_->episode_ids.at(variant_);
     if (index < 0 || static_cast<std::size_t>(index) >= ids.size() || ids[static_cast<std::size_t>(index)].empty()) {
-      throw InputError(fmt::format("the source run '{}' [{}] has no finished episode {} (it holds {}): a yoked run "
-                                   "replays episode k of the source against its own episode k",
+      throw InputError(fmt::format("the source run '{}' [{}] has no finished episode {} (it holds {}): yoked episode k "
+                                   "replays source episode (k + episode_offset) mod the source's episode count",
                                    from_.string(), variant_, index, ids.size()),
                        "robot.params.from", fmt::format("a source run with at least {} episodes, or fewer episodes "
                                                         "in this run", index + 1));
