@@ -39,6 +39,9 @@ constexpr std::array<std::array<double, 5>, 5> kSocialTransitionTarget = {{
 }};
 constexpr std::array<double, kAxisCount> kChangesPerMinTarget = {1.54, 1.00, 1.62};
 
+/// Half-width of a label share's acceptance band: ±.05 for common labels, half the target for rare ones (so that
+/// a rare label such as `adversarial` (.012) can fail low as well as high), never below ±.01.
+double share_half_width(double target) { return std::clamp(0.5 * target, 0.01, 0.05); }
 constexpr double kShareTolerance = 0.05;
 /// §8: P(same social label) and cooperative+cooperative share, with the bands of our calibration check.
 constexpr double kDyadSameTarget = 0.876;
@@ -372,8 +375,8 @@ std::vector<ComparisonRow> compare_with_targets(const PopulationStats* cc, const
       const std::string group = fmt::format("cc share {}", axis_name(axis));
       for (std::size_t j = 0; j < label_count(axis); ++j) {
         const double t = kShareTarget[a][j];
-        rows.push_back({group, std::string(label_name(axis, j)), cc->labels.share[a][j], t, t - kShareTolerance,
-                        t + kShareTolerance, true});
+        rows.push_back({group, std::string(label_name(axis, j)), cc->labels.share[a][j], t,
+                        t - share_half_width(t), t + share_half_width(t), true});
       }
     }
     for (const Axis axis : kAxes) {
@@ -421,6 +424,13 @@ std::vector<ComparisonRow> compare_with_targets(const PopulationStats* cc, const
   }
   if (cr) {
     add_duration_rows(rows, "cr duration", cr->duration, kCrDuration);
+    // Bouts as a person codes them, from the same rules in every condition; PInSoRo's child-child rates for scale
+    // (there is no child-robot target).
+    for (const Axis axis : kAxes) {
+      const auto a = static_cast<std::size_t>(axis);
+      rows.push_back({"cr label changes per min", std::string(axis_name(axis)), cr->labels.changes_per_min[a],
+                      kChangesPerMinTarget[a], 0, 0, false});
+    }
     add_agreement_rows(rows, "cr coder", cr->labels);
     add_behaviour_rows(rows, "cr behaviour", cr->labels);
   }
