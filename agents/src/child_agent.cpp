@@ -219,7 +219,9 @@ void ChildAgent::observe_partner_acts(double t, const PartnerView& partner, int 
 
 void ChildAgent::on_response(double t, double weight) {
   ++counters_.contingent_responses;
-  last_answered_t_ = t;
+  // An answer keeps joint play going only as far as it is likely to be one: the share of the partner's acts
+  // after my bids that its base rate does not explain (a partner that acts on a timetable answers by chance).
+  if (rng_.bernoulli(contingency_.attributable_share())) last_answered_t_ = t;
   motivation_ += params_->drives.contingency_gain * weight * contingency_.contingency() * (1.0 - motivation_);
 }
 
@@ -252,10 +254,8 @@ void ChildAgent::on_item_taken(double t) {
   protest_pending_ = true;
   if (rng_.bernoulli(r.take_reaction_probability)) {
     const double a = std::exp(feature(Feature::Assertiveness));
-    // The fitted entry biases of the attitude axis scale the reactions too, so the label fit governs them.
-    const auto& bias = params_->axis(Axis::SocialAttitude).bias;
-    const double weights[3] = {r.frustrated_weight * std::exp(bias[3]), r.adversarial_weight * a * std::exp(bias[1]),
-                               r.assertive_weight * a * std::exp(bias[2])};
+    // The reaction to a take is its own mechanism (the fitted entry biases govern the attitude's course otherwise).
+    const double weights[3] = {r.frustrated_weight, r.adversarial_weight * a, r.assertive_weight * a};
     const double total = weights[0] + weights[1] + weights[2];
     double u = rng_.uniform() * total;
     SocialAttitude next = SocialAttitude::Frustrated;
@@ -792,7 +792,11 @@ void ChildAgent::sustain_joint_play(double t) {
   if (labels_.social == SocialEngagement::Associative || labels_.social == SocialEngagement::Cooperative) {
     if (t - std::max(last_answered_t_, bout_start_[s]) <= reciprocity_window()) return;
     ++counters_.joint_play_lapses;
-    const auto next = partner_playing ? SocialEngagement::Parallel : SocialEngagement::Solitary;
+    // Joint play winds down a step at a time: cooperation without answers falls back to talking about the play
+    // (which lapses in turn when that goes unanswered too), talk to play side by side or alone.
+    const auto next = labels_.social == SocialEngagement::Cooperative ? SocialEngagement::Associative
+                      : partner_playing                               ? SocialEngagement::Parallel
+                                                                      : SocialEngagement::Solitary;
     switch_label(Axis::SocialEngagement, static_cast<std::size_t>(next), t);
   } else if (labels_.social == SocialEngagement::Onlooker) {
     const double watch = params_->partnership.watch_window_s;

@@ -134,10 +134,13 @@ void PairCoder::track_words(double t, int who, const ObservedPlayer& self) {
   if (kind == Utterance::Protest || kind == Utterance::AnnounceStop) return;
   // Associative — "talks about it": words to the other while play is going on are about the play.
   if (plays(t, who, params_.talk_play_window_s) || plays(t, 1 - who, params_.talk_play_window_s)) me.interaction.add(t);
-  // Cooperative — "the two children discuss what to do next": a proposal answered in words is a discussion, and
-  // both speakers take part in it.
+  // Cooperative — "the two children discuss what to do next": a proposal, answered in words by the other, and a
+  // further word from either (three turns, each within the answer window of the one before) is a discussion,
+  // and both speakers take part in it. A remark that happens to follow a proposal is not yet a discussion.
   const bool answers = t - them.last_talk_t <= params_.answer_window_s;
-  if (answers && (kind == Utterance::Proposal || t - them.last_proposal_t <= params_.answer_window_s)) {
+  if (answers && them.last_proposal_t > me.last_talk_t && t - them.last_proposal_t <= params_.answer_window_s) {
+    proposal_answered_t_ = t;
+  } else if (t > proposal_answered_t_ && t - proposal_answered_t_ <= params_.answer_window_s) {
     me.last_discussion_t = t;
     them.last_discussion_t = t;
   }
@@ -246,11 +249,12 @@ SocialAttitude PairCoder::attitude_candidate(double t, int who) const {
   const Track& me = tracks_[static_cast<std::size_t>(who)];
   if (t - me.last_take_t <= params_.adversarial_hold_s) return SocialAttitude::Adversarial;
   if (t - me.last_protest_t <= params_.frustrated_hold_s) return SocialAttitude::Frustrated;
-  // Pro-social: the child's own interaction about the play, or friendly acts often enough; assertive: directing
-  // the other's play within it; a child keeping to itself is passive, even when it throws in a suggestion.
+  // Assertive — "bossy, manipulative, gentle grabbing": the child directs the other's play (tells it what to do,
+  // asks for its item, or takes an item after asking). Pro-social: the child's own interaction about the play, or
+  // friendly acts often enough; a child keeping to itself is passive.
+  if (t - me.last_directive_t <= params_.assertive_hold_s) return SocialAttitude::Assertive;
   const bool friendly = interacting(t, who) || me.friendly >= params_.friendly_share;
-  if (!friendly) return SocialAttitude::Passive;
-  return t - me.last_directive_t <= params_.assertive_hold_s ? SocialAttitude::Assertive : SocialAttitude::Prosocial;
+  return friendly ? SocialAttitude::Prosocial : SocialAttitude::Passive;
 }
 
 SocialEngagement PairCoder::candidate(double t, int who) const {
@@ -271,7 +275,9 @@ SocialEngagement PairCoder::candidate(double t, int who) const {
   // one, drew where it drew) at least twice within the window and the other followed the child's at least once.
   // The other's acts near my items alone never make me cooperative: my own following acts are required.
   const double coop_from = t - params_.cooperation_window_s;
-  const bool turn_taking = me.follows.since(coop_from) >= 2 && them.follows.since(coop_from) >= 1;
+  const int my_follows = me.follows.since(coop_from);
+  const int their_follows = them.follows.since(coop_from);
+  const bool turn_taking = my_follows >= 1 && their_follows >= 1 && my_follows + their_follows >= 3;
   if (t - me.last_discussion_t <= params_.discussion_hold_s || (i_talk && turn_taking)) {
     return SocialEngagement::Cooperative;
   }

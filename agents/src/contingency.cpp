@@ -11,10 +11,13 @@ ContingencyDetector::ContingencyDetector(const ContingencyParams& params) : para
 void ContingencyDetector::advance(double t, double dt) {
   const ContingencyParams& p = *params_;
   const double keep = p.memory_s > 0.0 ? std::exp(-dt / p.memory_s) : 0.0;
-  bids_ *= keep;
-  answered_ *= keep;
-  time_s_ *= keep;
-  acts_ *= keep;
+  for (Rates& r : rates_) {
+    r.bids *= keep;
+    r.answered *= keep;
+    r.window_s *= keep;
+    r.probes *= keep;
+    r.probe_hits *= keep;
+  }
   interruptions_ *= p.interruption_tau_s > 0.0 ? std::exp(-dt / p.interruption_tau_s) : 0.0;
   salience_ += (1.0 - salience_) * (p.habituation_recovery_s > 0.0 ? 1.0 - std::exp(-dt / p.habituation_recovery_s) : 1.0);
   int kept = 0;
@@ -27,13 +30,47 @@ void ContingencyDetector::advance(double t, double dt) {
     }
   }
   open_count_ = kept;
-  time_s_ += dt;
+  // The base rate of each kind of bid is measured on probe windows, as long as my bids' windows, laid end to end
+  // over the stretches where I had no such bid open: the share of them in which the partner did something that
+  // could have answered such a bid. Counting windows, not a rate, keeps a partner acting on a fixed period as
+  // "always there" as it is after my bids. A bid of mine cancels the running probe.
+  for (std::size_t k = 0; k < kBidKinds; ++k) {
+    Rates& r = rates_[k];
+    if (open_of(static_cast<BidKind>(k))) {
+      r.probing = false;
+      continue;
+    }
+    if (r.probing && t >= r.probe_closes) {
+      r.probes += 1.0;
+      r.probe_hits += r.probe_hit ? 1.0 : 0.0;
+      r.probing = false;
+    }
+    if (!r.probing) {
+      r.probing = true;
+      r.probe_hit = false;
+      r.probe_closes = t + mean_window(r);
+    }
+  }
+}
+
+double ContingencyDetector::mean_window(const Rates& r) const {
+  const ContingencyParams& p = *params_;
+  return (r.window_s + p.prior_bids * p.response_window_s) / (r.bids + p.prior_bids);
+}
+
+bool ContingencyDetector::open_of(BidKind kind) const {
+  for (int i = 0; i < open_count_; ++i) {
+    if (open_[static_cast<std::size_t>(i)].kind == kind) return true;
+  }
+  return false;
 }
 
 void ContingencyDetector::close(const OpenBid& bid) {
-  bids_ += 1.0;
+  Rates& r = rates_[static_cast<std::size_t>(bid.kind)];
+  r.bids += 1.0;
+  r.window_s += bid.closes - bid.opened;
   if (bid.answered) {
-    answered_ += 1.0;
+    r.answered += 1.0;
   } else if (bid.seeking) {
     ++unanswered_new_;
   }
@@ -72,28 +109,36 @@ bool ContingencyDetector::about_my_play(int item, const Vec2& point) const {
   return (item >= 0 && item == my_item_) || (point - my_point_).norm() < params_->about_distance_m;
 }
 
-bool ContingencyDetector::about(const OpenBid& bid, PartnerActKind kind, int item, const Vec2& point) const {
-  switch (kind) {
-    case PartnerActKind::LookAtMe:  // looking back at me, or at me while I speak
-      return bid.kind == BidKind::Look || bid.kind == BidKind::Talk;
-    case PartnerActKind::LookAtMyPlay:  // joint attention to what I just did
-      return bid.kind == BidKind::Play &&
-             ((item >= 0 && item == bid.item) || (point - bid.point).norm() < params_->about_distance_m);
-    case PartnerActKind::TalkToMe:  // a reply, or a comment on what I just did
-      return true;
-    case PartnerActKind::TouchMyPlay:  // joining my act, or taking up what I said
-      return bid.kind == BidKind::Talk ||
-             (bid.kind == BidKind::Play &&
-              ((item >= 0 && item == bid.item) || (point - bid.point).norm() < params_->about_distance_m));
+bool ContingencyDetector::could_answer(BidKind bid, PartnerActKind act) {
+  switch (act) {
+    case PartnerActKind::LookAtMe: return bid == BidKind::Look || bid == BidKind::Talk;  // looking back at me
+    case PartnerActKind::LookAtMyPlay: return bid == BidKind::Play;  // joint attention to what I just did
+    case PartnerActKind::TalkToMe: return true;  // a reply, or a comment on what I just did
+    case PartnerActKind::TouchMyPlay: return bid == BidKind::Play || bid == BidKind::Talk;  // joining it, taking it up
   }
   return false;
 }
 
+bool ContingencyDetector::about(const OpenBid& bid, PartnerActKind kind, int item, const Vec2& point) const {
+  if (!could_answer(bid.kind, kind)) return false;
+  if (bid.kind == BidKind::Play && (kind == PartnerActKind::LookAtMyPlay || kind == PartnerActKind::TouchMyPlay)) {
+    return (item >= 0 && item == bid.item) || (point - bid.point).norm() < params_->about_distance_m;
+  }
+  return true;
+}
+
 ActClass ContingencyDetector::on_partner_act(double t, PartnerActKind kind, int item, const Vec2& point) {
   const bool on_play = kind == PartnerActKind::LookAtMyPlay || kind == PartnerActKind::TouchMyPlay;
-  // The base rate counts every act of the kinds that could answer me, whenever it comes (Watson's unconditional
-  // probability of the stimulus); acts on the tray count only where they are about my play.
-  if (!on_play || about_my_play(item, point)) acts_ += 1.0;
+  // The base rate of each kind of bid counts the acts that could answer it that come while no such bid of mine is
+  // open: how often the partner does such things when I did nothing (Watson's probability of the stimulus given
+  // no response); acts on the tray count only where they are about my play. A partner acting on a timetable does
+  // so as often in these stretches as after my bids; a partner that answers me does so mostly after them.
+  if (!on_play || about_my_play(item, point)) {
+    for (std::size_t k = 0; k < kBidKinds; ++k) {
+      Rates& r = rates_[k];
+      if (r.probing && could_answer(static_cast<BidKind>(k), kind)) r.probe_hit = true;
+    }
+  }
   for (int i = 0; i < open_count_; ++i) {
     OpenBid& bid = open_[static_cast<std::size_t>(i)];
     if (bid.answered || t < bid.opened || !about(bid, kind, item, point)) continue;
@@ -112,21 +157,51 @@ double ContingencyDetector::on_interruption() {
 
 void ContingencyDetector::habituate() { salience_ *= 1.0 - params_->habituation_rate; }
 
-double ContingencyDetector::answered_share() const {
+double ContingencyDetector::answered_share(const Rates& r) const {
   const ContingencyParams& p = *params_;
-  return (answered_ + p.prior_bids * p.prior_answered_share) / (bids_ + p.prior_bids);
+  return (r.answered + p.prior_bids * p.prior_answered_share) / (r.bids + p.prior_bids);
+}
+
+double ContingencyDetector::base_share(const Rates& r) const {
+  const ContingencyParams& p = *params_;
+  // The prior: the partner acting at `prior_base_rate_per_min` at random, worth `prior_free_time_s` of probing.
+  const double prior = 1.0 - std::exp(-p.prior_base_rate_per_min / 60.0 * mean_window(r));
+  const double prior_probes = p.prior_free_time_s / std::max(mean_window(r), 1e-3);
+  return (r.probe_hits + prior_probes * prior) / (r.probes + prior_probes);
+}
+
+template <typename Share>
+double ContingencyDetector::weighted(Share share) const {
+  double sum = 0.0;
+  double weight = 0.0;
+  for (const Rates& r : rates_) {
+    const double w = r.bids + params_->prior_bids;
+    sum += w * share(r);
+    weight += w;
+  }
+  return sum / weight;
+}
+
+double ContingencyDetector::answered_share() const {
+  return weighted([this](const Rates& r) { return answered_share(r); });
 }
 
 double ContingencyDetector::base_share() const {
-  const ContingencyParams& p = *params_;
-  const double rate_per_s = (acts_ + p.prior_free_time_s * p.prior_base_rate_per_min / 60.0) /
-                            (time_s_ + p.prior_free_time_s);
-  return 1.0 - std::exp(-rate_per_s * p.response_window_s);
+  return weighted([this](const Rates& r) { return base_share(r); });
+}
+
+double ContingencyDetector::attributable_share() const {
+  return weighted([this](const Rates& r) {
+    const double p1 = answered_share(r);
+    return std::clamp((p1 - base_share(r)) / std::max(p1, 1e-6), 0.0, 1.0);
+  });
 }
 
 double ContingencyDetector::contingency() const {
-  const double p0 = base_share();
-  return std::clamp((answered_share() - p0) / std::max(1.0 - p0, 1e-6), 0.0, 1.0);
+  return weighted([this](const Rates& r) {
+    const double p0 = base_share(r);
+    return std::clamp((answered_share(r) - p0) / std::max(1.0 - p0, 1e-6), 0.0, 1.0);
+  });
 }
 
 int ContingencyDetector::take_unanswered() { return std::exchange(unanswered_new_, 0); }

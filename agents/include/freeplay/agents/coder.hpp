@@ -142,6 +142,7 @@ class PairCoder {
   bool started_ = false;
   double last_t_ = 0.0;
   std::array<Track, 2> tracks_{};
+  double proposal_answered_t_ = -1e9;  // when one player last answered the other's proposal in words
   std::array<GazeTarget, 2> prev_gaze_{};
   std::array<std::array<Coded, kAxisCount>, 2> coded_{};
 };

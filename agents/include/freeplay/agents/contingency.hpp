@@ -4,9 +4,10 @@
 //
 // A partner's act answers me only when it is contingent on something I did: it follows my act or bid within a
 // short window AND is about it (my item or area, my utterance, my gaze). The detector keeps Watson's two
-// conditional rates as running, forgetting counts: how often my bids were followed by such an act, and the base
-// rate of the same acts whenever they come. Its contingency estimate is the normalised difference of the two
-// (Cheng's causal power of ΔP): a partner who does a lot regardless of me scores as low as one who does nothing.
+// conditional rates as running, forgetting counts, for each kind of bid: how often my bids were followed by an act
+// that could answer them, and the base rate of the same acts while I had no such bid open. Its contingency estimate
+// is the normalised difference of the two (Cheng's causal power of ΔP), averaged over the kinds of bid by how often
+// I make them: a partner who does a lot regardless of me scores as low as one who does nothing.
 // It also tracks habituation to non-contingent attention and how often the partner interrupts the child's play.
 
 #include <array>
@@ -60,9 +61,13 @@ class ContingencyDetector {
 
   /// Contingency estimate in [0, 1]: (P(act | bid) − P(act | no bid)) / (1 − P(act | no bid)), clamped.
   double contingency() const;
-  /// P(a bid of mine was answered within the window), with the prior.
+  /// The share of the answers to my bids that the partner's base rate does not explain, (p₁ − p₀) / p₁ in [0, 1]
+  /// (averaged over the kinds of bid): how likely an act that followed my bid was a response to it.
+  double attributable_share() const;
+  /// P(a bid of mine was answered within the window), with the prior (averaged over the kinds of bid).
   double answered_share() const;
-  /// P(at least one act of the kinds that could answer me in any window of the same length): the base rate.
+  /// P(at least one act of the kinds that could answer a bid in a window of the same length while no such bid of
+  /// mine was open): the base rate (averaged over the kinds of bid).
   double base_share() const;
   /// Salience of non-contingent attention in [0, 1]: 1 when fresh, lower after repetition (habituation).
   double salience() const { return salience_; }
@@ -86,18 +91,36 @@ class ContingencyDetector {
     bool seeking = false;
   };
 
+  /// Watson's counts for one kind of bid (forgetting).
+  struct Rates {
+    double bids = 0.0;      // closed bids
+    double answered = 0.0;  // … of those answered
+    double window_s = 0.0;  // summed length of the closed bids' windows (the act's duration + the response window)
+    double probes = 0.0;    // windows of that length that passed while no bid of this kind was open
+    double probe_hits = 0.0;// … of those, windows in which an act came that could have answered such a bid
+    bool probing = false;   // a probe window is running
+    double probe_closes = 0.0;
+    bool probe_hit = false;
+  };
+  static constexpr std::size_t kBidKinds = 3;
+
   bool about(const OpenBid& bid, PartnerActKind kind, int item, const Vec2& point) const;
   bool about_my_play(int item, const Vec2& point) const;
+  static bool could_answer(BidKind bid, PartnerActKind act);
+  bool open_of(BidKind kind) const;
   void close(const OpenBid& bid);
+  double answered_share(const Rates& r) const;
+  double mean_window(const Rates& r) const;
+  double base_share(const Rates& r) const;
+  /// The bid-weighted mean of `share` over the kinds of bid.
+  template <typename Share>
+  double weighted(Share share) const;
 
   const ContingencyParams* params_;
   static constexpr int kMaxOpen = 6;
   std::array<OpenBid, kMaxOpen> open_{};
   int open_count_ = 0;
-  double bids_ = 0.0;           ///< forgetting count of closed bids
-  double answered_ = 0.0;       ///< … of those answered
-  double time_s_ = 0.0;         ///< forgetting exposure
-  double acts_ = 0.0;           ///< forgetting count of the partner's acts that could answer me
+  std::array<Rates, kBidKinds> rates_{};  ///< per BidKind
   double salience_ = 1.0;
   double interruptions_ = 0.0;
   int my_item_ = -1;

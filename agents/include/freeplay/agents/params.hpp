@@ -138,7 +138,7 @@ struct ContingencyParams {
   double memory_s = 120.0;              ///< forgetting time constant of the bid and base-rate counts (s)
   double prior_bids = 2.0;              ///< weight of the prior answered share, in bids
   double prior_answered_share = 0.5;    ///< prior P(a bid is answered)
-  double prior_free_time_s = 20.0;      ///< weight of the prior base rate, in seconds without a bid
+  double prior_free_time_s = 20.0;      ///< weight of the prior base rate, in seconds of probe windows
   double prior_base_rate_per_min = 3.0; ///< prior rate of the partner's acts that could answer me (1/min)
   double non_contingent_weight = 0.3;   ///< motivating effect of fresh non-contingent attention, relative to a response
   double habituation_rate = 0.2;        ///< each non-contingent stimulus multiplies its salience by (1 − rate)
