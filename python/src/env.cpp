@@ -5,6 +5,9 @@
 #include <fmt/format.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <exception>
 #include <mutex>
@@ -28,6 +31,35 @@ struct Decision {
   std::vector<policies::ActionResult> results;       ///< moves and utterances that ended since then
   std::map<std::string, std::vector<std::string>> coded;  ///< per child seat: the coder's current labels
 };
+
+/// How long a thread that waits for the other side of an episode (the stepping thread for the next decision, the
+/// worker for the actions) polls before it sleeps on the condition variable. A decision costs about 10 µs of
+/// simulation and a sleep-and-wake costs about as much again on each side, so polling first halves a step's
+/// hand-over when every thread has a core of its own; a long wait (Python thinking, an idle env) still sleeps.
+constexpr auto kPollBeforeSleep = std::chrono::microseconds(100);
+
+/// Episode worker threads alive in this process (all Envs and VecEnvs together).
+std::atomic<unsigned> g_live_workers{0};
+
+/// True when the episode workers and the stepping thread fit on the machine's cores: only then does polling pay;
+/// with more threads than cores a polling thread would take the core that the thread it waits for needs.
+bool threads_fit_cores() {
+  static const unsigned cores = std::max(1U, std::thread::hardware_concurrency());
+  return g_live_workers.load(std::memory_order_relaxed) + 1 <= cores;
+}
+
+/// Polls `done` (yielding the core between tries) for at most kPollBeforeSleep, when threads fit the cores; true
+/// when `done` became true.
+template <class Done>
+bool poll_briefly(Done done) {
+  if (!threads_fit_cores()) return done();
+  const auto until = std::chrono::steady_clock::now() + kPollBeforeSleep;
+  while (!done()) {
+    if (std::chrono::steady_clock::now() >= until) return false;
+    std::this_thread::yield();
+  }
+  return true;
+}
 
 class EnvEpisode;
 thread_local EnvEpisode* t_env_episode = nullptr;  // the episode the current worker thread runs, if any
@@ -76,6 +108,7 @@ class EnvEpisode {
 
   /// Waits until the episode asks for the next decision or ends; rethrows what stopped it.
   void wait() {
+    poll_briefly([&] { return state_.load() != State::Running; });
     std::unique_lock lock(mutex_);
     cv_.wait(lock, [&] { return state_ != State::Running; });
     if (error_) {
@@ -104,6 +137,9 @@ class EnvEpisode {
     pending_ = Decision{};
     state_ = State::Deciding;
     cv_.notify_all();
+    lock.unlock();
+    poll_briefly([&] { return state_.load() != State::Deciding || stop_.load(); });
+    lock.lock();
     cv_.wait(lock, [&] { return state_ != State::Deciding || stop_.load(); });
     return stop_.load() ? std::vector<policies::Action>{} : std::move(actions_);
   }
@@ -150,6 +186,7 @@ class EnvEpisode {
 
   void work(std::uint64_t seed) {
     t_env_episode = this;
+    g_live_workers.fetch_add(1);
     std::optional<runner::EpisodeResult> result;
     std::exception_ptr error;
     try {
@@ -161,6 +198,7 @@ class EnvEpisode {
       error = std::current_exception();
     }
     t_env_episode = nullptr;
+    g_live_workers.fetch_sub(1);
     std::lock_guard lock(mutex_);
     if (result && !result->aborted) result_ = std::move(result);
     error_ = error;
@@ -188,7 +226,7 @@ class EnvEpisode {
   std::thread worker_;
   std::mutex mutex_;
   std::condition_variable cv_;
-  State state_ = State::Finished;
+  std::atomic<State> state_ = State::Finished;  // written under mutex_, polled without it
   std::atomic<bool> stop_{false};
   Decision pending_;
   Decision decided_;
