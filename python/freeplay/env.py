@@ -50,7 +50,8 @@ def action_space():
 
 @dataclass
 class Step:
-    """What a reward function sees of one step: observable events and coded labels, never hidden child state."""
+    """What a reward function sees of one step: observable events and coded labels; hidden child state only when
+    the Env was asked for it (``privileged=True``)."""
 
     observation: object                           #: the next observation (freeplay.Observation)
     events: list = field(default_factory=list)    #: event-log entries (dicts t, source, type, data) of the step
@@ -59,6 +60,9 @@ class Step:
     dt: float = 1.0 / DECISION_HZ                 #: simulated seconds of free play in the step
     finished: bool = False                        #: the episode ended in this step
     record: dict = None                           #: the episode's record once finished (duration_s, …)
+    #: None unless the Env was made with ``privileged=True``: then seat → the child model's hidden state (``labels``
+    #: the child intends, ``motivation``, ``boredom``, ``answer_expectation``, ``wants_to_stop``)
+    privileged: dict = None
 
 
 class Env:
@@ -66,22 +70,27 @@ class Env:
     terminated, truncated, info)`` at the 10 Hz decision rate.
 
     ``reward`` is a callable over a :class:`Step` (see :mod:`freeplay.rewards`; default: zero).
-    ``perceives_children`` fills ``observation.children`` (as a perceiving C++ policy would). ``reset(seed=s)``
+    ``perceives_children`` fills ``observation.children`` (as a perceiving C++ policy would). ``privileged=True``
+    adds the children's hidden state (what no camera, coder or policy sees) to ``info["privileged"]`` and
+    ``Step.privileged``; by default neither the reward nor the observation sees it. ``reset(seed=s)``
     plays episode 0 of root seed ``s`` (as ``freeplay run --seed s``); further resets play episodes 1, 2, …;
     ``options={"episode": i}`` picks one.
     """
 
     metadata = {"render_modes": [], "decision_hz": DECISION_HZ}
 
-    def __init__(self, scenario, overrides=(), reward=None, perceives_children=False, **set_values):
+    def __init__(self, scenario, overrides=(), reward=None, perceives_children=False, privileged=False,
+                 **set_values):
         self.scenario_file = os.fspath(scenario)
         self.overrides = overrides_list(overrides, **set_values)
         self.scenario = load(self.scenario_file, self.overrides)["variants"][0]
         self.reward = reward or rewards.zero
         self.perceives_children = perceives_children
+        self.privileged = bool(privileged)
         self.observation_space = observation_space()
         self.action_space = action_space()
-        self._episode = _freeplay._EnvEpisode(self.scenario_file, self.overrides, perceives_children)
+        self._episode = _freeplay._EnvEpisode(self.scenario_file, self.overrides, perceives_children,
+                                              self.privileged)
         self._seed = self.scenario["seed"]
         self._next_index = 0
         self.episode_index = None
@@ -126,9 +135,13 @@ class Env:
         coded = {seat: dict(zip(CODED_LABELS, labels)) for seat, labels in raw["coded"].items()}
         record = e.record() if finished else None
         obs = e.observation
-        step = Step(obs, raw["events"], coded, raw["results"], finished=finished, record=record)
+        privileged = raw.get("privileged")
+        step = Step(obs, raw["events"], coded, raw["results"], finished=finished, record=record,
+                    privileged=privileged)
         info = {"t": raw["t"], "events": raw["events"], "coded": coded, "results": raw["results"],
                 "episode": self.episode_index, "seed": self.episode_seed}
+        if privileged is not None:
+            info["privileged"] = privileged
         if record is not None:
             info["record"] = record
         value = float(self.reward(step)) if reward else 0.0
@@ -141,8 +154,10 @@ class VecEnv:
     of them runs in parallel. Finished episodes restart at once with the next episode index (``info["final_info"]``
     and ``info["final_observation"]`` keep the end)."""
 
-    def __init__(self, n, scenario, overrides=(), reward=None, perceives_children=False, **set_values):
-        self.envs = [Env(scenario, overrides, reward, perceives_children, **set_values) for _ in range(n)]
+    def __init__(self, n, scenario, overrides=(), reward=None, perceives_children=False, privileged=False,
+                 **set_values):
+        self.envs = [Env(scenario, overrides, reward, perceives_children, privileged, **set_values)
+                     for _ in range(n)]
         self.num_envs = n
         self._next_index = 0
 

@@ -16,6 +16,7 @@
 
 #include "bindings.hpp"
 #include "env_channel.hpp"
+#include "freeplay/agents/labels.hpp"
 #include "freeplay/core/error.hpp"
 #include "freeplay/runner/episode.hpp"
 #include "freeplay/runner/suite.hpp"
@@ -30,6 +31,8 @@ struct Decision {
   std::vector<nlohmann::json> events;                ///< event-log entries since the previous decision
   std::vector<policies::ActionResult> results;       ///< moves and utterances that ended since then
   std::map<std::string, std::vector<std::string>> coded;  ///< per child seat: the coder's current labels
+  /// Per child seat: the child model's hidden state; filled only for an Env that asked for privileged information.
+  std::map<std::string, runner::ChildHiddenState> privileged;
 };
 
 /// How long a thread that waits for the other side of an episode (the stepping thread for the next decision, the
@@ -68,8 +71,10 @@ thread_local EnvEpisode* t_env_episode = nullptr;  // the episode the current wo
 class EnvEpisode {
  public:
   /// Loads the scenario (as `freeplay run` would) for stepping; it must be a child-robot scenario.
-  EnvEpisode(const std::string& file, const std::vector<std::string>& overrides, bool perceives_children)
-      : perceives_children_(perceives_children) {
+  /// `privileged` also keeps the children's hidden state at each decision (Env(privileged=True)).
+  EnvEpisode(const std::string& file, const std::vector<std::string>& overrides, bool perceives_children,
+             bool privileged)
+      : perceives_children_(perceives_children), privileged_(privileged) {
     auto suite = runner::single_scenario_suite(file, overrides, python_vocabulary());
     scenario_ = std::move(suite.variants.front().scenario);
     if (scenario_.condition != "child-robot") {
@@ -156,6 +161,7 @@ class EnvEpisode {
     for (const auto& child : snapshot.children) {
       auto& labels = pending_.coded[child.seat];
       labels.assign(child.coded.begin(), child.coded.end());
+      if (privileged_) pending_.privileged[child.seat] = child.hidden;
     }
   }
   /// Called by the channel policy when the episode resets it: keeps the policy's context and random stream.
@@ -170,6 +176,8 @@ class EnvEpisode {
   Rng policy_rng() const { return policy_rng_; }
   /// The channel policy's perceives_children().
   bool perceives_children() const { return perceives_children_; }
+  /// True when the decisions carry the children's hidden state.
+  bool privileged() const { return privileged_; }
 
  private:
   enum class State { Running, Deciding, Finished };
@@ -206,6 +214,7 @@ class EnvEpisode {
       for (auto& e : pending_.events) decided_.events.push_back(std::move(e));
       for (auto& r : pending_.results) decided_.results.push_back(r);
       for (auto& [seat, labels] : pending_.coded) decided_.coded[seat] = labels;
+      for (auto& [seat, hidden] : pending_.privileged) decided_.privileged[seat] = hidden;
     }
     state_ = State::Finished;
     cv_.notify_all();
@@ -223,6 +232,7 @@ class EnvEpisode {
 
   runner::Scenario scenario_;
   bool perceives_children_ = false;
+  bool privileged_ = false;
   std::thread worker_;
   std::mutex mutex_;
   std::condition_variable cv_;
@@ -263,6 +273,23 @@ py::dict decision_info(const EnvEpisode& e) {
   info["results"] = py::cast(d.results);
   info["coded"] = py::cast(d.coded);
   info["t"] = d.observation.t;
+  if (e.privileged()) {
+    py::dict privileged;
+    for (const auto& [seat, hidden] : d.privileged) {
+      py::dict labels;
+      for (std::size_t a = 0; a < agents::kAxisCount; ++a) {
+        labels[py::str(agents::axis_name(agents::kAxes[a]))] = py::str(hidden.labels[a]);
+      }
+      py::dict child;
+      child["labels"] = labels;
+      child["motivation"] = hidden.motivation;
+      child["boredom"] = hidden.boredom;
+      child["answer_expectation"] = hidden.answer_expectation;
+      child["wants_to_stop"] = hidden.wants_to_stop;
+      privileged[py::str(seat)] = child;
+    }
+    info["privileged"] = privileged;
+  }
   return info;
 }
 
@@ -275,8 +302,8 @@ std::unique_ptr<policies::PlayPolicy> make_env_channel_policy() {
 
 void bind_env(py::module_& m) {
   py::class_<EnvEpisode>(m, "_EnvEpisode", "One episode stepped decision by decision (freeplay.Env uses it).")
-      .def(py::init<const std::string&, const std::vector<std::string>&, bool>(), py::arg("file"),
-           py::arg("overrides"), py::arg("perceives_children"))
+      .def(py::init<const std::string&, const std::vector<std::string>&, bool, bool>(), py::arg("file"),
+           py::arg("overrides"), py::arg("perceives_children"), py::arg("privileged") = false)
       .def("start", &EnvEpisode::start, py::arg("seed"), py::call_guard<py::gil_scoped_release>())
       .def("act", [](EnvEpisode& e, const py::handle& actions) {
         auto parsed = actions_from_python(actions, "freeplay.Env");
