@@ -2,8 +2,8 @@
 
 The episode runs on a C++ worker thread; its policy hands each decision to :meth:`Env.step` and waits for the
 actions, so a rollout is exactly a run of the same policy (same seed → same event log). Gymnasium is optional:
-the spaces are described in plain Python, and the environment is registered as ``freeplay/Sandtray-v0`` when
-``gymnasium`` imports.
+the spaces are described in plain Python; when ``gymnasium`` imports they are ``gymnasium.spaces`` objects and the
+environment is registered as ``freeplay/Sandtray-v0``.
 """
 
 import os
@@ -48,6 +48,58 @@ def action_space():
     }
 
 
+def _gymnasium():
+    """The gymnasium module when it imports, else None (Debian 12 has none; the module never requires it)."""
+    try:
+        import gymnasium
+    except ImportError:
+        return None
+    return gymnasium
+
+
+def gymnasium_spaces(gymnasium):
+    """(observation space, action space) as ``gymnasium.spaces`` objects describing the same layout as
+    :func:`observation_space` and :func:`action_space`. Observations stay :class:`freeplay.Observation` objects and
+    actions freeplay action objects: the spaces give a learner the structure, shapes and bounds (points are Box(2,)
+    in metres, flags Discrete(2), names Text); they are not what ``reset``/``step`` return."""
+    spaces = gymnasium.spaces
+    inf = float("inf")
+    point = spaces.Box(-inf, inf, shape=(2,), dtype=numpy.float64)
+    scalar = spaces.Box(0.0, inf, shape=(), dtype=numpy.float64)
+    flag = spaces.Discrete(2)
+    name = spaces.Text(max_length=64, charset=_NAME_CHARSET)
+    observation = spaces.Dict({
+        "t": scalar,
+        "items": spaces.Sequence(spaces.Dict({
+            "name": name, "position": point, "theta": spaces.Box(-numpy.pi, numpy.pi, shape=(), dtype=numpy.float64),
+            "touched_by_child": flag, "held_by_robot": flag, "visible": flag})),
+        "zones": spaces.Sequence(spaces.Dict({"colour": name, "polygon": spaces.Sequence(point), "centroid": point})),
+        "touches": spaces.Sequence(spaces.Dict({"finger": spaces.Discrete(6, start=1), "position": point})),
+        "interaction_events": spaces.Sequence(name),
+        "children": spaces.Sequence(spaces.Dict({
+            "seat": name, "face_detected": flag, "gaze": spaces.Discrete(len(_freeplay.PerceivedGaze.__members__)),
+            "gaze_on_screen": flag, "speaking": flag, "addressing_robot": flag, "seconds_since_touch": scalar,
+            "moving_item": flag})),
+        "self": spaces.Dict({
+            "moving_item": flag, "current_item": name, "speaking": flag, "arm_reach_centre": point,
+            "arm_reach_radius": scalar, "arm_reach_known": flag}),
+    })
+    action = spaces.Sequence(spaces.Dict({
+        "kind": spaces.Discrete(len(ACTION_KINDS)),  # index into ACTION_KINDS
+        "item": name,                                 # MoveItem
+        "point": spaces.Box(-inf, inf, shape=(3,), dtype=numpy.float64),  # MoveItem/PointAt (x, y), LookAt (x, y, z)
+        "text": spaces.Text(max_length=256, charset=_NAME_CHARSET + " ,.!?'"),  # Say
+        "addressee": name,                            # Say, LookAt(child=…)
+        "seconds": scalar,                            # Wait
+    }))
+    return observation, action
+
+
+#: The action kinds in the order of the gymnasium action space's ``kind``.
+ACTION_KINDS = ("MoveItem", "LookAt", "PointAt", "Say", "Wait", "CancelMove")
+_NAME_CHARSET = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-/:."
+
+
 @dataclass
 class Step:
     """What a reward function sees of one step: observable events and coded labels; hidden child state only when
@@ -87,8 +139,13 @@ class Env:
         self.reward = reward or rewards.zero
         self.perceives_children = perceives_children
         self.privileged = bool(privileged)
-        self.observation_space = observation_space()
-        self.action_space = action_space()
+        #: plain-Python descriptions of the observation and the actions (always present)
+        self.observation_layout, self.action_layout = observation_space(), action_space()
+        gymnasium = _gymnasium()
+        if gymnasium is None:
+            self.observation_space, self.action_space = self.observation_layout, self.action_layout
+        else:
+            self.observation_space, self.action_space = gymnasium_spaces(gymnasium)
         self._episode = _freeplay._EnvEpisode(self.scenario_file, self.overrides, perceives_children,
                                               self.privileged)
         self._seed = self.scenario["seed"]
@@ -159,6 +216,9 @@ class VecEnv:
         self.envs = [Env(scenario, overrides, reward, perceives_children, privileged, **set_values)
                      for _ in range(n)]
         self.num_envs = n
+        #: the spaces of one environment (as gymnasium's vector environments name them)
+        self.single_observation_space = self.envs[0].observation_space
+        self.single_action_space = self.envs[0].action_space
         self._next_index = 0
 
     def reset(self, seed=None):
@@ -193,12 +253,12 @@ class VecEnv:
 
 
 def _register_with_gymnasium():
-    try:
-        import gymnasium
-    except ImportError:
-        return
-    if "freeplay/Sandtray-v0" not in gymnasium.registry:
-        gymnasium.register(id="freeplay/Sandtray-v0", entry_point="freeplay.env:Env")
+    """Registers ``freeplay/Sandtray-v0`` (``gymnasium.make("freeplay/Sandtray-v0", scenario=FILE, …)``) when
+    gymnasium imports. Its environment checker is off: observations are typed freeplay objects, not the dicts that
+    the checker would test against the space."""
+    gymnasium = _gymnasium()
+    if gymnasium is not None and "freeplay/Sandtray-v0" not in gymnasium.registry:
+        gymnasium.register(id="freeplay/Sandtray-v0", entry_point="freeplay.env:Env", disable_env_checker=True)
 
 
 _register_with_gymnasium()

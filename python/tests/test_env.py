@@ -63,8 +63,8 @@ def test_observation_types(scenario):
     for _ in range(20):
         obs, *_ = env.step([])
     assert obs.children and obs.children[0].seat in ("purple", "yellow")
-    assert set(env.observation_space) >= {"t", "items", "self"}
-    assert "MoveItem" in env.action_space
+    assert set(env.observation_layout) >= {"t", "items", "self"}
+    assert "MoveItem" in env.action_layout
 
 
 def test_env_bad_action_raises(scenario):
