@@ -1,7 +1,7 @@
 """Learning against the synthetic children: cross-entropy search over a 3-parameter Python policy.
 
   PYTHONPATH=build/python:examples/python /usr/bin/python3 examples/python/learn_cem.py \
-      [--iterations 6] [--population 8] [--episodes 4] [--check-sessions 100] [--out learn_cem-runs]
+      [--iterations 6] [--population 8] [--episodes 4] [--check-sessions 100] [--out FOLDER]
 
 The policy (JoinIn) waits `delay_s` after the child's last touch, then moves an item next to the child's last item
 with probability `move_p` and talks with probability `say_p`. The objective is the mean free-play duration (how
@@ -22,6 +22,7 @@ import argparse
 import json
 import os
 import tempfile
+import time
 
 import numpy
 
@@ -134,7 +135,9 @@ def main():
     parser.add_argument("--set", action="append", default=[], help="extra KEY=VALUE overrides")
     parser.add_argument("--check-sessions", type=int, default=100,
                         help="sessions of the check of the learned policy (0: no check)")
-    parser.add_argument("--out", default="learn_cem-runs", help="folder of the check's run folders")
+    parser.add_argument("--out", default=None,
+                        help="folder of the check's run folders (default: learn_cem-runs/<UTC time>; an existing "
+                             "folder is resumed, which needs the same learned parameters)")
     args = parser.parse_args()
     rng = numpy.random.default_rng(0)
     mean, sd = (LOW + HIGH) / 2, (HIGH - LOW) / 3
@@ -160,7 +163,8 @@ def main():
     except ImportError:
         pass
     if args.check_sessions > 0:
-        check_learned(mean, args.check_sessions, args.jobs, args.set, args.out)
+        out = args.out or os.path.join("learn_cem-runs", time.strftime("%Y%m%dT%H%M%SZ", time.gmtime()))
+        check_learned(mean, args.check_sessions, args.jobs, args.set, out)
 
 
 if __name__ == "__main__":
