@@ -1,0 +1,42 @@
+#include "freeplay/ros/graph_topics.hpp"
+
+namespace freeplay::ros_live {
+
+namespace {
+
+recording::TickTopicsOptions live_options(std::uint64_t origin_ns, bool sim_robot, double arm_reach_m) {
+  recording::TickTopicsOptions options;
+  options.streams = recording::kLiveGraphStreams;
+  if (!sim_robot) options.streams &= ~unsigned{recording::kFingerPoses | recording::kTrajectory};
+  options.origin_ns = origin_ns;
+  options.arm_reach_m = arm_reach_m;
+  return options;
+}
+
+}  // namespace
+
+GraphTopics::GraphTopics(std::uint64_t seed, std::uint64_t origin_ns, bool sim_robot, double arm_reach_m)
+    : origin_ns_(origin_ns),
+      streams_(live_options(origin_ns, sim_robot, arm_reach_m).streams),
+      topics_(seed, live_options(origin_ns, sim_robot, arm_reach_m)) {}
+
+std::vector<ros_graph::SerializedMessage> GraphTopics::declarations() const {
+  std::vector<ros_graph::SerializedMessage> out;
+  for (auto& d : recording::declared_topics(streams_)) {
+    out.push_back({std::move(d.topic), std::move(d.datatype), std::move(d.md5sum), std::move(d.definition), d.latched,
+                   nullptr});
+  }
+  return out;
+}
+
+std::vector<ros_graph::SerializedMessage> GraphTopics::tick(const runner::EpisodeSnapshot& snapshot) {
+  std::vector<ros_graph::SerializedMessage> out;
+  for (const auto& m : topics_.tick(snapshot)) {
+    auto s = recording::serialize(m, origin_ns_);
+    out.push_back({std::move(s.topic), std::move(s.datatype), std::move(s.md5sum), std::move(s.definition), s.latched,
+                   std::move(s.bytes)});
+  }
+  return out;
+}
+
+}  // namespace freeplay::ros_live
