@@ -39,6 +39,13 @@ ros::Time time_of_ns(std::uint64_t ns) {
   return stamp;
 }
 
+// The declaration of `topic` carrying messages of type M.
+template <class M>
+TopicDeclaration declaration_of(std::string topic, bool latched) {
+  namespace mt = ros::message_traits;
+  return {std::move(topic), mt::DataType<M>::value(), mt::MD5Sum<M>::value(), mt::Definition<M>::value(), latched};
+}
+
 // A visualization_msgs/Marker LINE_STRIP of one of the game's line markers.
 msg::Marker line_marker(const sim::LineMarker& line, const ros::Time& stamp) {
   msg::Marker m;
@@ -301,11 +308,7 @@ std::uint64_t TickTopics::stamp_ns(double t) const { return impl_->stamp(t).toNS
 std::vector<TopicDeclaration> declared_topics(unsigned streams) {
   std::vector<TopicDeclaration> out;
   const auto declare = [&](unsigned of, const char* topic, auto message, bool latched) {
-    using M = decltype(message);
-    namespace mt = ros::message_traits;
-    if ((streams & of) != 0) {
-      out.push_back({topic, mt::DataType<M>::value(), mt::MD5Sum<M>::value(), mt::Definition<M>::value(), latched});
-    }
+    if ((streams & of) != 0) out.push_back(declaration_of<decltype(message)>(topic, latched));
   };
   declare(kGameFrames | kCameraLinkFrames | kHeadTrackers | kRobotFocus | kRobotLinks | kArmReach, topics::kTf,
           msg::TFMessage(), false);
@@ -325,18 +328,12 @@ SerializedTopicMessage serialize(const TopicMessage& message, std::uint64_t orig
   return std::visit(
       [&](const auto& m) {
         using M = std::decay_t<decltype(m)>;
-        namespace mt = ros::message_traits;
         auto bytes = std::make_shared<std::vector<std::uint8_t>>(ros::serialization::serializationLength(m));
         ros::serialization::OStream stream(bytes->data(), static_cast<std::uint32_t>(bytes->size()));
         ros::serialization::serialize(stream, m);
         const auto offset = static_cast<std::int64_t>(std::round(message.published * 1e9));
-        return SerializedTopicMessage{message.topic,
-                                      mt::DataType<M>::value(),
-                                      mt::MD5Sum<M>::value(),
-                                      mt::Definition<M>::value(),
-                                      message.latched,
-                                      origin_ns + static_cast<std::uint64_t>(offset),
-                                      std::move(bytes)};
+        return SerializedTopicMessage{declaration_of<M>(message.topic, message.latched),
+                                      origin_ns + static_cast<std::uint64_t>(offset), std::move(bytes)};
       },
       message.message);
 }

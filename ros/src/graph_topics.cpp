@@ -13,6 +13,13 @@ recording::TickTopicsOptions live_options(std::uint64_t origin_ns, bool sim_robo
   return options;
 }
 
+// The graph's plain-data form (graph.hpp holds standard types only) of a topic and its bytes.
+ros_graph::SerializedMessage graph_message(recording::TopicDeclaration d,
+                                           std::shared_ptr<const std::vector<std::uint8_t>> bytes) {
+  return {std::move(d.topic), std::move(d.datatype), std::move(d.md5sum), std::move(d.definition), d.latched,
+          std::move(bytes)};
+}
+
 }  // namespace
 
 GraphTopics::GraphTopics(std::uint64_t seed, std::uint64_t origin_ns, bool sim_robot, double arm_reach_m)
@@ -22,10 +29,7 @@ GraphTopics::GraphTopics(std::uint64_t seed, std::uint64_t origin_ns, bool sim_r
 
 std::vector<ros_graph::SerializedMessage> GraphTopics::declarations() const {
   std::vector<ros_graph::SerializedMessage> out;
-  for (auto& d : recording::declared_topics(streams_)) {
-    out.push_back({std::move(d.topic), std::move(d.datatype), std::move(d.md5sum), std::move(d.definition), d.latched,
-                   nullptr});
-  }
+  for (auto& d : recording::declared_topics(streams_)) out.push_back(graph_message(std::move(d), nullptr));
   return out;
 }
 
@@ -33,8 +37,7 @@ std::vector<ros_graph::SerializedMessage> GraphTopics::tick(const runner::Episod
   std::vector<ros_graph::SerializedMessage> out;
   for (const auto& m : topics_.tick(snapshot)) {
     auto s = recording::serialize(m, origin_ns_);
-    out.push_back({std::move(s.topic), std::move(s.datatype), std::move(s.md5sum), std::move(s.definition), s.latched,
-                   std::move(s.bytes)});
+    out.push_back(graph_message(std::move(s.declaration), std::move(s.bytes)));
   }
   return out;
 }

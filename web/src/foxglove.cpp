@@ -103,7 +103,7 @@ std::vector<FoxgloveMessage> FoxgloveTopics::tick(const runner::EpisodeSnapshot&
     const auto serialized = recording::serialize(m, origin_ns_);
     const auto& bytes = *serialized.bytes;
     out.push_back({channel, serialized.stamp_ns, std::make_shared<const std::string>(bytes.begin(), bytes.end()),
-                   serialized.latched});
+                   serialized.declaration.latched});
   }
   return out;
 }

@@ -73,17 +73,6 @@ struct TopicMessage {
   TopicPayload message;     ///< the message
 };
 
-/// One message in the ROS 1 wire format, with what a connection header needs.
-struct SerializedTopicMessage {
-  std::string topic;        ///< e.g. "/tf"
-  std::string datatype;     ///< e.g. "tf2_msgs/TFMessage"
-  std::string md5sum;       ///< the type's MD5 sum
-  std::string definition;   ///< the full message definition
-  bool latched = false;     ///< a latched topic
-  std::uint64_t stamp_ns = 0;  ///< when it is sent (ns, the front's ROS time)
-  std::shared_ptr<const std::vector<std::uint8_t>> bytes;  ///< the serialised message
-};
-
 /// A topic the tick sends, as an advertisement (or a Foxglove channel) declares it.
 struct TopicDeclaration {
   std::string topic;        ///< e.g. "/tf"
@@ -96,6 +85,13 @@ struct TopicDeclaration {
 /// The topics `streams` (TickStream flags) send, each once: /tf, /zones, /footprints, the background (compressed,
 /// raw, camera_info), /joint_states, /poses, /visualization_markers, /map.
 std::vector<TopicDeclaration> declared_topics(unsigned streams);
+
+/// One message in the ROS 1 wire format, with what a connection header needs.
+struct SerializedTopicMessage {
+  TopicDeclaration declaration;  ///< its topic, type and latching
+  std::uint64_t stamp_ns = 0;    ///< when it is sent (ns, the front's ROS time)
+  std::shared_ptr<const std::vector<std::uint8_t>> bytes;  ///< the serialised message
+};
 
 /// Settings of a TickTopics.
 struct TickTopicsOptions {
