@@ -287,15 +287,7 @@ struct BagRecorder::Impl {
     text.data = ros_string(json.dump());
     put(topics::kEvents, t, text);
     ++stats.events;
-    if (e.type == "interaction_event") {
-      msg::String message;
-      message.data = ros_string(e.data.value("message", ""));
-      put(topics::kInteractionEvents, t, message);
-    } else if (e.type == "say" && e.source == "robot") {
-      msg::String speech;
-      speech.data = ros_string(e.data.value("text", ""));
-      put(topics::kSpeech, t, speech);
-    }
+    put_all(tick_topics->event(t, e));  // interaction events, the robot's speech, the stages' signals
     if (e.type == "say" || e.type == "speech") {
       msg::String speech;
       speech.data = ros_string(nlohmann::json{{"t", e.t}, {"who", e.source}, {"data", e.data}}.dump());
@@ -303,11 +295,6 @@ struct BagRecorder::Impl {
     }
     if (e.source == "protocol" && e.type == "stage") {
       const auto stage = e.data.value("stage", "");
-      static const std::map<std::string, std::string> kSignals = {
-          {"tutorial", "start_tutorial"}, {"freeplay", "start_freeplay"}, {"debriefing", "blank_interface"}};
-      if (const auto it = kSignals.find(stage); it != kSignals.end()) {
-        put("/sandtray/signals/" + it->second, t, msg::Empty());
-      }
       if (stage == "freeplay") freeplay_start = e.t;
       if (freeplay_start || stage == "debriefing") {
         const double since = e.t - freeplay_start.value_or(e.t);

@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <map>
 #include <cmath>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -28,6 +29,10 @@ using detail::transform;
 using detail::yaw_quaternion;
 
 using Frames = std::vector<std::pair<std::string, Eigen::Isometry3d>>;
+
+// The signal the supervisor sends when a protocol stage starts.
+const std::map<std::string, std::string> kStageSignals = {
+    {"tutorial", "start_tutorial"}, {"freeplay", "start_freeplay"}, {"debriefing", "blank_interface"}};
 
 constexpr double kFootprintsAfterS = 1.0;  // the game publishes /footprints once, ~1 s after start
 constexpr int kMapEveryTicks = 2;          // map_and_plan publishes /map at 5 Hz
@@ -301,6 +306,25 @@ std::vector<TopicMessage> TickTopics::tick(const runner::EpisodeSnapshot& snapsh
   return out;
 }
 
+std::vector<TopicMessage> TickTopics::event(double t, const Event& e) const {
+  std::vector<TopicMessage> out;
+  if (!impl_->wants(kEventTopics)) return out;
+  if (e.type == "interaction_event") {
+    msg::String message;
+    message.data = ros_string(e.data.value("message", ""));
+    out.push_back({topics::kInteractionEvents, "game", t, false, std::move(message)});
+  } else if (e.type == "say" && e.source == "robot") {
+    msg::String speech;
+    speech.data = ros_string(e.data.value("text", ""));
+    out.push_back({topics::kSpeech, "robot", t, false, std::move(speech)});
+  } else if (e.source == "protocol" && e.type == "stage") {
+    if (const auto it = kStageSignals.find(e.data.value("stage", "")); it != kStageSignals.end()) {
+      out.push_back({topics::kSignalsPrefix + it->second, "supervisor", t, false, msg::Empty()});
+    }
+  }
+  return out;
+}
+
 void TickTopics::set_arm_reach(const std::optional<runner::ReachDisc>& reach) { impl_->arm_reach = reach; }
 
 std::uint64_t TickTopics::stamp_ns(double t) const { return impl_->stamp(t).toNSec(); }
@@ -321,6 +345,11 @@ std::vector<TopicDeclaration> declared_topics(unsigned streams) {
   declare(kFingerPoses, topics::kPoses, msg::PoseStamped(), false);
   declare(kTrajectory, topics::kTrajectory, msg::Marker(), false);
   declare(kMap, topics::kMap, msg::OccupancyGrid(), false);
+  declare(kEventTopics, topics::kInteractionEvents, msg::String(), false);
+  declare(kEventTopics, topics::kSpeech, msg::String(), false);
+  for (const auto& [stage, signal] : kStageSignals) {
+    declare(kEventTopics, (std::string(topics::kSignalsPrefix) + signal).c_str(), msg::Empty(), false);
+  }
   return out;
 }
 

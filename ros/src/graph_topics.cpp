@@ -34,8 +34,16 @@ std::vector<ros_graph::SerializedMessage> GraphTopics::declarations() const {
 }
 
 std::vector<ros_graph::SerializedMessage> GraphTopics::tick(const runner::EpisodeSnapshot& snapshot) {
+  return serialized(topics_.tick(snapshot));
+}
+
+std::vector<ros_graph::SerializedMessage> GraphTopics::event(double t, const Event& e) const {
+  return serialized(topics_.event(t, e));
+}
+
+std::vector<ros_graph::SerializedMessage> GraphTopics::serialized(const std::vector<recording::TopicMessage>& messages) const {
   std::vector<ros_graph::SerializedMessage> out;
-  for (const auto& m : topics_.tick(snapshot)) {
+  for (const auto& m : messages) {
     auto s = recording::serialize(m, origin_ns_);
     out.push_back(graph_message(std::move(s.declaration), std::move(s.bytes)));
   }

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <string_view>
 #include <set>
 #include <stdexcept>
 #include <thread>
@@ -53,7 +54,7 @@ class LivePublisher final : public runner::EpisodeObserver {
     for (const auto& m : topics_.tick(s)) g.publish(m);
     lateness_ms_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - due).count());
     last_t_ = s.t;
-    for (const auto& e : s.new_events) publish_event(e);
+    for (const auto& e : s.new_events) publish_event(s.t, e);
     if (robot_ != nullptr) serve_plans(*robot_, *s.tray);
     if (s.stage != "freeplay") {
       for (const auto& p : g.take_poses()) {  // as the game: poses are ignored while the sandbox is hidden
@@ -114,17 +115,12 @@ class LivePublisher final : public runner::EpisodeObserver {
     return due;
   }
 
-  void publish_event(const Event& e) {
-    auto& g = *live_.graph;
-    if (e.type == "interaction_event") g.interaction_event(e.data.value("message", ""));
-    if (e.type == "say" && e.source == "robot") g.speech(e.data.value("text", ""));
-    if (e.source == "protocol" && e.type == "stage") {
-      static const std::map<std::string, std::string> kSignals = {
-          {"tutorial", "start_tutorial"}, {"freeplay", "start_freeplay"}, {"debriefing", "blank_interface"}};
-      if (const auto it = kSignals.find(e.data.value("stage", "")); it != kSignals.end()) {
-        // A stage another node signalled is not signalled again (the game never echoes a signal).
-        if (received_.erase(it->second) == 0) g.signal(it->second);
-      }
+  void publish_event(double t, const Event& e) {
+    for (const auto& m : topics_.event(t, e)) {
+      // A stage another node signalled is not signalled again (the game never echoes a signal).
+      const std::string_view prefix = recording::topics::kSignalsPrefix;
+      if (m.topic.starts_with(prefix) && received_.erase(m.topic.substr(prefix.size())) != 0) continue;
+      live_.graph->publish(m);
     }
   }
 

@@ -110,11 +110,11 @@ bool own(const std::string& publisher) {
 struct SandtrayGraph::Impl {
   NodeOptions options;
   std::optional<ros::NodeHandle> nh;  // renewed with every registration
-  ros::Publisher clock, tf, events, speech, poses;
+  ros::Publisher clock, tf, speech, poses;
   std::map<std::string, ros::Publisher> topics;  // by topic, advertised at the first message (publish)
   std::map<std::string, SerializedMessage> latched;  // the latched topics' last messages, sent again after a restart
   std::vector<SerializedMessage> declared;           // topics advertised up front (advertise), again after a restart
-  std::map<std::string, ros::Publisher> signal_out;
+  std::map<std::string, ros::Publisher> signal_out;  // every signal advertised (the stages' go out through publish)
   std::map<std::string, ros::Publisher> cameras;  // by topic, advertised at the first frame
   std::vector<ros::Subscriber> subscribers;
   std::unique_ptr<NavigationServer> server;
@@ -147,7 +147,6 @@ struct SandtrayGraph::Impl {
     auto& handle = *nh;
     if (o.publish_clock) clock = handle.advertise<rosgraph_msgs::Clock>("/clock", 10);
     tf = handle.advertise<tf2_msgs::TFMessage>("/tf", 100);
-    events = handle.advertise<std_msgs::String>("sandtray/interaction_events", 10);
     speech = handle.advertise<std_msgs::String>("speech", 10);
     poses = handle.advertise<geometry_msgs::PoseStamped>("/poses", 10);
     for (const auto& declaration : declared) publisher_of(declaration);
@@ -195,7 +194,7 @@ struct SandtrayGraph::Impl {
       cancels.clear();
       pending_goal.reset();
     }
-    for (auto* p : {&clock, &tf, &events, &speech, &poses}) p->shutdown();
+    for (auto* p : {&clock, &tf, &speech, &poses}) p->shutdown();
     for (auto& [topic, p] : topics) p.shutdown();
     topics.clear();
     for (auto& [name, p] : signal_out) p.shutdown();
@@ -355,17 +354,6 @@ void SandtrayGraph::tf(double stamp, const std::vector<Transform>& transforms) {
     msg.transforms.push_back(ts);
   }
   impl_->tf.publish(msg);
-}
-
-void SandtrayGraph::interaction_event(const std::string& message) {
-  std_msgs::String msg;
-  msg.data = message;
-  impl_->events.publish(msg);
-}
-
-void SandtrayGraph::signal(const std::string& name) {
-  const auto it = impl_->signal_out.find(name);
-  if (it != impl_->signal_out.end()) it->second.publish(std_msgs::Empty());
 }
 
 void SandtrayGraph::speech(const std::string& text) {

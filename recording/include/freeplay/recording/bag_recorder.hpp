@@ -32,8 +32,6 @@ inline SessionPaths session_paths(const std::filesystem::path& dir) {
 
 /// The recorder's own topics (the tick's real topics are in tick_topics.hpp; the camera topics in camera_topics()).
 namespace topics {
-inline constexpr const char* kInteractionEvents = "/sandtray/interaction_events";   ///< std_msgs/String
-inline constexpr const char* kSpeech = "/speech";                                   ///< String: the robot's TTS text
 inline constexpr const char* kAllSpeech = "/freeplay/speech";                       ///< String: JSON, everyone's
 inline constexpr const char* kEvents = "/freeplay/events";                          ///< String: JSON, the event log
 inline constexpr const char* kAnnotations = "/freeplay/annotations";                ///< String: PInSoRo YAML

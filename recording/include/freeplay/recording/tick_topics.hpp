@@ -30,6 +30,9 @@ inline constexpr const char* kPoses = "/poses";                                 
 inline constexpr const char* kTrajectory = "/visualization_markers";                ///< Marker: the move's trajectory
 inline constexpr const char* kJointStates = "/joint_states";                        ///< sensor_msgs/JointState
 inline constexpr const char* kMap = "/map";                                         ///< nav_msgs/OccupancyGrid
+inline constexpr const char* kInteractionEvents = "/sandtray/interaction_events";   ///< std_msgs/String
+inline constexpr const char* kSpeech = "/speech";                                   ///< String: the robot's TTS text
+inline constexpr const char* kSignalsPrefix = "/sandtray/signals/";                 ///< std_msgs/Empty, + the name
 }  // namespace topics
 
 /// The streams of the tick, one per real publisher group; a front carries a set of them (bit flags).
@@ -48,21 +51,24 @@ enum TickStream : unsigned {
   kBackgroundRaw = 1U << 11,  ///< /sandtray/background/image (rgba8) and camera_info with it, latched
   kZones = 1U << 12,          ///< /zones with every new background, latched (zones_from_image)
   kMap = 1U << 13,            ///< /map at 5 Hz (map_and_plan)
+  kEventTopics = 1U << 14,    ///< per event: interaction events, the robot's speech, the protocol stages' signals
 };
 
 /// What the bag records (record.launch's topics plus the robot's, docs/recording.md).
 inline constexpr unsigned kBagStreams = kGameFrames | kCameraLinkFrames | kHeadTrackers | kRobotFocus | kRobotLinks |
-                                        kJointStates | kFingerPoses | kFootprints | kBackground | kZones;
+                                        kJointStates | kFingerPoses | kFootprints | kBackground | kZones | kEventTopics;
 /// What `freeplay serve` publishes as the game and core nodes (the robot's own nodes publish the rest).
 inline constexpr unsigned kLiveGraphStreams = kGameFrames | kCameraLinkFrames | kArmReach | kJointStates | kFingerPoses |
-                                              kTrajectory | kFootprints | kBackground | kBackgroundRaw | kZones | kMap;
+                                              kTrajectory | kFootprints | kBackground | kBackgroundRaw | kZones | kMap |
+                                              kEventTopics;
 /// What the web page's Foxglove channels carry.
 inline constexpr unsigned kFoxgloveStreams =
     kGameFrames | kRobotLinks | kJointStates | kFootprints | kBackground | kZones;
 
 /// A message of any type the tick sends.
 using TopicPayload = std::variant<msg::TFMessage, msg::MarkerArray, msg::Marker, msg::CompressedImage, msg::Image,
-                                  msg::CameraInfo, msg::OccupancyGrid, msg::JointState, msg::PoseStamped>;
+                                  msg::CameraInfo, msg::OccupancyGrid, msg::JointState, msg::PoseStamped, msg::String,
+                                  msg::Empty>;
 
 /// One message of the tick.
 struct TopicMessage {
@@ -83,7 +89,7 @@ struct TopicDeclaration {
 };
 
 /// The topics `streams` (TickStream flags) send, each once: /tf, /zones, /footprints, the background (compressed,
-/// raw, camera_info), /joint_states, /poses, /visualization_markers, /map.
+/// raw, camera_info), /joint_states, /poses, /visualization_markers, /map, then the event topics.
 std::vector<TopicDeclaration> declared_topics(unsigned streams);
 
 /// One message in the ROS 1 wire format, with what a connection header needs.
@@ -124,6 +130,10 @@ class TickTopics {
   /// The whole tick (frames() and state()) in the order the publishers send it: by publication time, as a
   /// subscriber (or `rosbag play`) sees it.
   std::vector<TopicMessage> tick(const runner::EpisodeSnapshot& snapshot);
+  /// The real topics event `e` of the tick `t` goes out on (kEventTopics), at the tick's time: `releasing_<item>` on
+  /// /sandtray/interaction_events, the robot's `say` on /speech, the start of the tutorial, free play and debriefing
+  /// on /sandtray/signals/{start_tutorial,start_freeplay,blank_interface} (as the supervisor sends them).
+  std::vector<TopicMessage> event(double t, const Event& e) const;
   /// Sets (or, with nullopt, stops) the `arm_reach` frame of kArmReach.
   void set_arm_reach(const std::optional<runner::ReachDisc>& reach);
   /// The ROS time (ns) of sandtray time `t`.

@@ -114,10 +114,6 @@ class SandtrayGraph {
   void publish(const SerializedMessage& message);
   /// Publishes one `/tf` message with `transforms`.
   void tf(double stamp, const std::vector<Transform>& transforms);
-  /// Publishes `sandtray/interaction_events`.
-  void interaction_event(const std::string& message);
-  /// Publishes `sandtray/signals/<name>` (std_msgs/Empty).
-  void signal(const std::string& name);
   /// Publishes `speech` (std_msgs/String: the Nao's text to speech).
   void speech(const std::string& text);
   /// Publishes one `/poses` message (frame `/sandtray`) from our own move executor.

@@ -20,12 +20,16 @@ class GraphTopics {
 
   /// The tick's messages in the order the publishers send them (recording::TickTopics::tick), ready to publish.
   std::vector<ros_graph::SerializedMessage> tick(const runner::EpisodeSnapshot& snapshot);
+  /// The real topics event `e` of the tick `t` goes out on (recording::TickTopics::event), ready to publish.
+  std::vector<ros_graph::SerializedMessage> event(double t, const Event& e) const;
   /// The topics these ticks send, to advertise up front (no bytes).
   std::vector<ros_graph::SerializedMessage> declarations() const;
   /// Sets (or, with nullopt, stops) the `arm_reach` frame.
   void set_arm_reach(const std::optional<runner::ReachDisc>& reach) { topics_.set_arm_reach(reach); }
 
  private:
+  std::vector<ros_graph::SerializedMessage> serialized(const std::vector<recording::TopicMessage>& messages) const;
+
   std::uint64_t origin_ns_;
   unsigned streams_;
   recording::TickTopics topics_;
