@@ -29,6 +29,7 @@ other_packages=(
   python3-visualization-msgs python3-actionlib-msgs python3-nav-msgs
   linux-perf valgrind
   pybind11-dev python3-dev python3-numpy python3-pandas python3-pytest  # the freeplay Python module (python/)
+  python3-matplotlib  # the figures of examples/python (not the main job)
   clang libclang-rt-14-dev
   libopencv-contrib-dev  # ArUco markers for the fiducial localisation (localisation/)
   # the experimenter's web page (web/: websocketpp over Boost.Asio) and its headless-browser test (tests/web/)

@@ -5,7 +5,8 @@
 1. a trivial Python policy (returns no action) against the C++ `idle` policy: simulated free-play seconds per
    wall second on one worker;
 2. Env.step: wall time per decision of an Env rollout minus that of the same episodes run by `idle` in C++;
-3. VecEnv with 1 and 2 environments: decisions per wall second.
+3. VecEnv with 1 and 2 environments: decisions per wall second, beside the C++ engine's own scaling from 1 to 2
+   workers on the same episodes (what this machine allows at the moment: a VecEnv cannot scale better);
 Wall-clock numbers: run on a quiet machine and report them with the machine.
 """
 
@@ -84,6 +85,8 @@ def main():
     print(f"Env: {steps} steps in {env_wall:.2f} s; C++ idle run of the same episodes {cpp_wall:.2f} s; "
           f"overhead {(env_wall - cpp_wall) / steps * 1e6:.1f} us per step")
 
+    cpp_two_wall, _ = timed_run(args.scenario, short + ["robot.policy=idle"], args.episodes, jobs=2)
+    print(f"C++ idle run, 2 workers: {cpp_wall / cpp_two_wall:.2f}x the speed of 1 worker (this machine's ceiling now)")
     one = max(vec_rate(args.scenario, short, 1, args.vec_steps) for _ in range(3))
     two = max(vec_rate(args.scenario, short, 2, args.vec_steps) for _ in range(3))
     print(f"VecEnv: 1 env {one:,.0f} steps/s, 2 envs {two:,.0f} steps/s, scaling {two / one:.2f}x")

@@ -2,8 +2,8 @@
 
 The episode runs on a C++ worker thread; its policy hands each decision to :meth:`Env.step` and waits for the
 actions, so a rollout is exactly a run of the same policy (same seed → same event log). Gymnasium is optional:
-the spaces are described in plain Python, and the environment is registered as ``freeplay/Sandtray-v0`` when
-``gymnasium`` imports.
+the spaces are described in plain Python; when ``gymnasium`` imports they are ``gymnasium.spaces`` objects and the
+environment is registered as ``freeplay/Sandtray-v0``.
 """
 
 import os
@@ -48,9 +48,62 @@ def action_space():
     }
 
 
+def _gymnasium():
+    """The gymnasium module when it imports, else None (Debian 12 has none; the module never requires it)."""
+    try:
+        import gymnasium
+    except ImportError:
+        return None
+    return gymnasium
+
+
+def gymnasium_spaces(gymnasium):
+    """(observation space, action space) as ``gymnasium.spaces`` objects describing the same layout as
+    :func:`observation_space` and :func:`action_space`. Observations stay :class:`freeplay.Observation` objects and
+    actions freeplay action objects: the spaces give a learner the structure, shapes and bounds (points are Box(2,)
+    in metres, flags Discrete(2), names Text); they are not what ``reset``/``step`` return."""
+    spaces = gymnasium.spaces
+    inf = float("inf")
+    point = spaces.Box(-inf, inf, shape=(2,), dtype=numpy.float64)
+    scalar = spaces.Box(0.0, inf, shape=(), dtype=numpy.float64)
+    flag = spaces.Discrete(2)
+    name = spaces.Text(max_length=64, charset=_NAME_CHARSET)
+    observation = spaces.Dict({
+        "t": scalar,
+        "items": spaces.Sequence(spaces.Dict({
+            "name": name, "position": point, "theta": spaces.Box(-numpy.pi, numpy.pi, shape=(), dtype=numpy.float64),
+            "touched_by_child": flag, "held_by_robot": flag, "visible": flag})),
+        "zones": spaces.Sequence(spaces.Dict({"colour": name, "polygon": spaces.Sequence(point), "centroid": point})),
+        "touches": spaces.Sequence(spaces.Dict({"finger": spaces.Discrete(6, start=1), "position": point})),
+        "interaction_events": spaces.Sequence(name),
+        "children": spaces.Sequence(spaces.Dict({
+            "seat": name, "face_detected": flag, "gaze": spaces.Discrete(len(_freeplay.PerceivedGaze.__members__)),
+            "gaze_on_screen": flag, "speaking": flag, "addressing_robot": flag, "seconds_since_touch": scalar,
+            "moving_item": flag})),
+        "self": spaces.Dict({
+            "moving_item": flag, "current_item": name, "speaking": flag, "arm_reach_centre": point,
+            "arm_reach_radius": scalar, "arm_reach_known": flag}),
+    })
+    action = spaces.Sequence(spaces.Dict({
+        "kind": spaces.Discrete(len(ACTION_KINDS)),  # index into ACTION_KINDS
+        "item": name,                                 # MoveItem
+        "point": spaces.Box(-inf, inf, shape=(3,), dtype=numpy.float64),  # MoveItem/PointAt (x, y), LookAt (x, y, z)
+        "text": spaces.Text(max_length=256, charset=_NAME_CHARSET + " ,.!?'"),  # Say
+        "addressee": name,                            # Say, LookAt(child=…)
+        "seconds": scalar,                            # Wait
+    }))
+    return observation, action
+
+
+#: The action kinds in the order of the gymnasium action space's ``kind``.
+ACTION_KINDS = ("MoveItem", "LookAt", "PointAt", "Say", "Wait", "CancelMove")
+_NAME_CHARSET = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-/:."
+
+
 @dataclass
 class Step:
-    """What a reward function sees of one step: observable events and coded labels, never hidden child state."""
+    """What a reward function sees of one step: observable events and coded labels; hidden child state only when
+    the Env was asked for it (``privileged=True``)."""
 
     observation: object                           #: the next observation (freeplay.Observation)
     events: list = field(default_factory=list)    #: event-log entries (dicts t, source, type, data) of the step
@@ -59,6 +112,9 @@ class Step:
     dt: float = 1.0 / DECISION_HZ                 #: simulated seconds of free play in the step
     finished: bool = False                        #: the episode ended in this step
     record: dict = None                           #: the episode's record once finished (duration_s, …)
+    #: None unless the Env was made with ``privileged=True``: then seat → the child model's hidden state (``labels``
+    #: the child intends, ``motivation``, ``boredom``, ``answer_expectation``, ``wants_to_stop``)
+    privileged: dict = None
 
 
 class Env:
@@ -66,22 +122,32 @@ class Env:
     terminated, truncated, info)`` at the 10 Hz decision rate.
 
     ``reward`` is a callable over a :class:`Step` (see :mod:`freeplay.rewards`; default: zero).
-    ``perceives_children`` fills ``observation.children`` (as a perceiving C++ policy would). ``reset(seed=s)``
+    ``perceives_children`` fills ``observation.children`` (as a perceiving C++ policy would). ``privileged=True``
+    adds the children's hidden state (what no camera, coder or policy sees) to ``info["privileged"]`` and
+    ``Step.privileged``; by default neither the reward nor the observation sees it. ``reset(seed=s)``
     plays episode 0 of root seed ``s`` (as ``freeplay run --seed s``); further resets play episodes 1, 2, …;
     ``options={"episode": i}`` picks one.
     """
 
     metadata = {"render_modes": [], "decision_hz": DECISION_HZ}
 
-    def __init__(self, scenario, overrides=(), reward=None, perceives_children=False, **set_values):
+    def __init__(self, scenario, overrides=(), reward=None, perceives_children=False, privileged=False,
+                 **set_values):
         self.scenario_file = os.fspath(scenario)
         self.overrides = overrides_list(overrides, **set_values)
         self.scenario = load(self.scenario_file, self.overrides)["variants"][0]
         self.reward = reward or rewards.zero
         self.perceives_children = perceives_children
-        self.observation_space = observation_space()
-        self.action_space = action_space()
-        self._episode = _freeplay._EnvEpisode(self.scenario_file, self.overrides, perceives_children)
+        self.privileged = bool(privileged)
+        #: plain-Python descriptions of the observation and the actions (always present)
+        self.observation_layout, self.action_layout = observation_space(), action_space()
+        gymnasium = _gymnasium()
+        if gymnasium is None:
+            self.observation_space, self.action_space = self.observation_layout, self.action_layout
+        else:
+            self.observation_space, self.action_space = gymnasium_spaces(gymnasium)
+        self._episode = _freeplay._EnvEpisode(self.scenario_file, self.overrides, perceives_children,
+                                              self.privileged)
         self._seed = self.scenario["seed"]
         self._next_index = 0
         self.episode_index = None
@@ -126,9 +192,13 @@ class Env:
         coded = {seat: dict(zip(CODED_LABELS, labels)) for seat, labels in raw["coded"].items()}
         record = e.record() if finished else None
         obs = e.observation
-        step = Step(obs, raw["events"], coded, raw["results"], finished=finished, record=record)
+        privileged = raw.get("privileged")
+        step = Step(obs, raw["events"], coded, raw["results"], finished=finished, record=record,
+                    privileged=privileged)
         info = {"t": raw["t"], "events": raw["events"], "coded": coded, "results": raw["results"],
                 "episode": self.episode_index, "seed": self.episode_seed}
+        if privileged is not None:
+            info["privileged"] = privileged
         if record is not None:
             info["record"] = record
         value = float(self.reward(step)) if reward else 0.0
@@ -141,9 +211,14 @@ class VecEnv:
     of them runs in parallel. Finished episodes restart at once with the next episode index (``info["final_info"]``
     and ``info["final_observation"]`` keep the end)."""
 
-    def __init__(self, n, scenario, overrides=(), reward=None, perceives_children=False, **set_values):
-        self.envs = [Env(scenario, overrides, reward, perceives_children, **set_values) for _ in range(n)]
+    def __init__(self, n, scenario, overrides=(), reward=None, perceives_children=False, privileged=False,
+                 **set_values):
+        self.envs = [Env(scenario, overrides, reward, perceives_children, privileged, **set_values)
+                     for _ in range(n)]
         self.num_envs = n
+        #: the spaces of one environment (as gymnasium's vector environments name them)
+        self.single_observation_space = self.envs[0].observation_space
+        self.single_action_space = self.envs[0].action_space
         self._next_index = 0
 
     def reset(self, seed=None):
@@ -178,12 +253,12 @@ class VecEnv:
 
 
 def _register_with_gymnasium():
-    try:
-        import gymnasium
-    except ImportError:
-        return
-    if "freeplay/Sandtray-v0" not in gymnasium.registry:
-        gymnasium.register(id="freeplay/Sandtray-v0", entry_point="freeplay.env:Env")
+    """Registers ``freeplay/Sandtray-v0`` (``gymnasium.make("freeplay/Sandtray-v0", scenario=FILE, …)``) when
+    gymnasium imports. Its environment checker is off: observations are typed freeplay objects, not the dicts that
+    the checker would test against the space."""
+    gymnasium = _gymnasium()
+    if gymnasium is not None and "freeplay/Sandtray-v0" not in gymnasium.registry:
+        gymnasium.register(id="freeplay/Sandtray-v0", entry_point="freeplay.env:Env", disable_env_checker=True)
 
 
 _register_with_gymnasium()

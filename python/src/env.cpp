@@ -5,6 +5,9 @@
 #include <fmt/format.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <exception>
 #include <mutex>
@@ -13,6 +16,7 @@
 
 #include "bindings.hpp"
 #include "env_channel.hpp"
+#include "freeplay/agents/labels.hpp"
 #include "freeplay/core/error.hpp"
 #include "freeplay/runner/episode.hpp"
 #include "freeplay/runner/suite.hpp"
@@ -27,7 +31,38 @@ struct Decision {
   std::vector<nlohmann::json> events;                ///< event-log entries since the previous decision
   std::vector<policies::ActionResult> results;       ///< moves and utterances that ended since then
   std::map<std::string, std::vector<std::string>> coded;  ///< per child seat: the coder's current labels
+  /// Per child seat: the child model's hidden state; filled only for an Env that asked for privileged information.
+  std::map<std::string, runner::ChildHiddenState> privileged;
 };
+
+/// How long a thread that waits for the other side of an episode (the stepping thread for the next decision, the
+/// worker for the actions) polls before it sleeps on the condition variable. A decision costs about 10 µs of
+/// simulation and a sleep-and-wake costs about as much again on each side, so polling first halves a step's
+/// hand-over when every thread has a core of its own; a long wait (Python thinking, an idle env) still sleeps.
+constexpr auto kPollBeforeSleep = std::chrono::microseconds(100);
+
+/// Episode worker threads alive in this process (all Envs and VecEnvs together).
+std::atomic<unsigned> g_live_workers{0};
+
+/// True when the episode workers and the stepping thread fit on the machine's cores: only then does polling pay;
+/// with more threads than cores a polling thread would take the core that the thread it waits for needs.
+bool threads_fit_cores() {
+  static const unsigned cores = std::max(1U, std::thread::hardware_concurrency());
+  return g_live_workers.load(std::memory_order_relaxed) + 1 <= cores;
+}
+
+/// Polls `done` (yielding the core between tries) for at most kPollBeforeSleep, when threads fit the cores; true
+/// when `done` became true.
+template <class Done>
+bool poll_briefly(Done done) {
+  if (!threads_fit_cores()) return done();
+  const auto until = std::chrono::steady_clock::now() + kPollBeforeSleep;
+  while (!done()) {
+    if (std::chrono::steady_clock::now() >= until) return false;
+    std::this_thread::yield();
+  }
+  return true;
+}
 
 class EnvEpisode;
 thread_local EnvEpisode* t_env_episode = nullptr;  // the episode the current worker thread runs, if any
@@ -36,8 +71,10 @@ thread_local EnvEpisode* t_env_episode = nullptr;  // the episode the current wo
 class EnvEpisode {
  public:
   /// Loads the scenario (as `freeplay run` would) for stepping; it must be a child-robot scenario.
-  EnvEpisode(const std::string& file, const std::vector<std::string>& overrides, bool perceives_children)
-      : perceives_children_(perceives_children) {
+  /// `privileged` also keeps the children's hidden state at each decision (Env(privileged=True)).
+  EnvEpisode(const std::string& file, const std::vector<std::string>& overrides, bool perceives_children,
+             bool privileged)
+      : perceives_children_(perceives_children), privileged_(privileged) {
     auto suite = runner::single_scenario_suite(file, overrides, python_vocabulary());
     scenario_ = std::move(suite.variants.front().scenario);
     if (scenario_.condition != "child-robot") {
@@ -76,6 +113,7 @@ class EnvEpisode {
 
   /// Waits until the episode asks for the next decision or ends; rethrows what stopped it.
   void wait() {
+    poll_briefly([&] { return state_.load() != State::Running; });
     std::unique_lock lock(mutex_);
     cv_.wait(lock, [&] { return state_ != State::Running; });
     if (error_) {
@@ -104,6 +142,9 @@ class EnvEpisode {
     pending_ = Decision{};
     state_ = State::Deciding;
     cv_.notify_all();
+    lock.unlock();
+    poll_briefly([&] { return state_.load() != State::Deciding || stop_.load(); });
+    lock.lock();
     cv_.wait(lock, [&] { return state_ != State::Deciding || stop_.load(); });
     return stop_.load() ? std::vector<policies::Action>{} : std::move(actions_);
   }
@@ -120,6 +161,7 @@ class EnvEpisode {
     for (const auto& child : snapshot.children) {
       auto& labels = pending_.coded[child.seat];
       labels.assign(child.coded.begin(), child.coded.end());
+      if (privileged_) pending_.privileged[child.seat] = child.hidden;
     }
   }
   /// Called by the channel policy when the episode resets it: keeps the policy's context and random stream.
@@ -134,6 +176,8 @@ class EnvEpisode {
   Rng policy_rng() const { return policy_rng_; }
   /// The channel policy's perceives_children().
   bool perceives_children() const { return perceives_children_; }
+  /// True when the decisions carry the children's hidden state.
+  bool privileged() const { return privileged_; }
 
  private:
   enum class State { Running, Deciding, Finished };
@@ -150,6 +194,7 @@ class EnvEpisode {
 
   void work(std::uint64_t seed) {
     t_env_episode = this;
+    g_live_workers.fetch_add(1);
     std::optional<runner::EpisodeResult> result;
     std::exception_ptr error;
     try {
@@ -161,6 +206,7 @@ class EnvEpisode {
       error = std::current_exception();
     }
     t_env_episode = nullptr;
+    g_live_workers.fetch_sub(1);
     std::lock_guard lock(mutex_);
     if (result && !result->aborted) result_ = std::move(result);
     error_ = error;
@@ -168,6 +214,7 @@ class EnvEpisode {
       for (auto& e : pending_.events) decided_.events.push_back(std::move(e));
       for (auto& r : pending_.results) decided_.results.push_back(r);
       for (auto& [seat, labels] : pending_.coded) decided_.coded[seat] = labels;
+      for (auto& [seat, hidden] : pending_.privileged) decided_.privileged[seat] = hidden;
     }
     state_ = State::Finished;
     cv_.notify_all();
@@ -185,10 +232,11 @@ class EnvEpisode {
 
   runner::Scenario scenario_;
   bool perceives_children_ = false;
+  bool privileged_ = false;
   std::thread worker_;
   std::mutex mutex_;
   std::condition_variable cv_;
-  State state_ = State::Finished;
+  std::atomic<State> state_ = State::Finished;  // written under mutex_, polled without it
   std::atomic<bool> stop_{false};
   Decision pending_;
   Decision decided_;
@@ -225,6 +273,23 @@ py::dict decision_info(const EnvEpisode& e) {
   info["results"] = py::cast(d.results);
   info["coded"] = py::cast(d.coded);
   info["t"] = d.observation.t;
+  if (e.privileged()) {
+    py::dict privileged;
+    for (const auto& [seat, hidden] : d.privileged) {
+      py::dict labels;
+      for (std::size_t a = 0; a < agents::kAxisCount; ++a) {
+        labels[py::str(agents::axis_name(agents::kAxes[a]))] = py::str(hidden.labels[a]);
+      }
+      py::dict child;
+      child["labels"] = labels;
+      child["motivation"] = hidden.motivation;
+      child["boredom"] = hidden.boredom;
+      child["answer_expectation"] = hidden.answer_expectation;
+      child["wants_to_stop"] = hidden.wants_to_stop;
+      privileged[py::str(seat)] = child;
+    }
+    info["privileged"] = privileged;
+  }
   return info;
 }
 
@@ -237,8 +302,8 @@ std::unique_ptr<policies::PlayPolicy> make_env_channel_policy() {
 
 void bind_env(py::module_& m) {
   py::class_<EnvEpisode>(m, "_EnvEpisode", "One episode stepped decision by decision (freeplay.Env uses it).")
-      .def(py::init<const std::string&, const std::vector<std::string>&, bool>(), py::arg("file"),
-           py::arg("overrides"), py::arg("perceives_children"))
+      .def(py::init<const std::string&, const std::vector<std::string>&, bool, bool>(), py::arg("file"),
+           py::arg("overrides"), py::arg("perceives_children"), py::arg("privileged") = false)
       .def("start", &EnvEpisode::start, py::arg("seed"), py::call_guard<py::gil_scoped_release>())
       .def("act", [](EnvEpisode& e, const py::handle& actions) {
         auto parsed = actions_from_python(actions, "freeplay.Env");

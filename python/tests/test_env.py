@@ -63,8 +63,8 @@ def test_observation_types(scenario):
     for _ in range(20):
         obs, *_ = env.step([])
     assert obs.children and obs.children[0].seat in ("purple", "yellow")
-    assert set(env.observation_space) >= {"t", "items", "self"}
-    assert "MoveItem" in env.action_space
+    assert set(env.observation_layout) >= {"t", "items", "self"}
+    assert "MoveItem" in env.action_layout
 
 
 def test_env_bad_action_raises(scenario):
@@ -112,3 +112,48 @@ def test_vec_env_equals_single_envs(scenario):
                 done[k] = counts[k]
                 assert "final_info" in infos[k]
     assert done == expected
+
+
+HIDDEN = {"labels", "motivation", "boredom", "answer_expectation", "wants_to_stop"}
+
+
+def test_hidden_child_state_is_not_offered_by_default(scenario):
+    seen = []
+
+    def reward(step):
+        seen.append(step)
+        return 0.0
+
+    env = freeplay.Env(scenario, SHORT, reward=reward)
+    _, info = env.reset(seed=3)
+    assert "privileged" not in info
+    _, last, _ = rollout(env, freeplay.Policy(), seed=3)
+    assert "privileged" not in last
+    assert seen and all(step.privileged is None for step in seen)
+    for step in seen:  # nor do the events carry the child model's variables
+        for event in step.events:
+            assert not HIDDEN & set(event.get("data") or {}), event
+
+
+def test_hidden_child_state_on_explicit_request(scenario):
+    seen = []
+
+    def reward(step):
+        seen.append(step.privileged)
+        return 0.0
+
+    plain = freeplay.Env(scenario, SHORT)
+    rollout(plain, freeplay.Policy(), seed=3)
+    env = freeplay.Env(scenario, SHORT, reward=reward, privileged=True)
+    _, info, _ = rollout(env, freeplay.Policy(), seed=3)
+    assert env.events() == plain.events()  # asking for it does not change the episode
+    hidden = info["privileged"]["purple"]
+    assert set(hidden) == HIDDEN
+    assert set(hidden["labels"]) == set(freeplay.env.CODED_LABELS)
+    assert 0.0 <= hidden["motivation"] <= 1.0
+    motivations = {s["purple"]["motivation"] for s in seen if s}
+    assert len(motivations) > 1  # it follows the child through the episode
+    assert all(s is not None for s in seen)
+    vec = freeplay.VecEnv(1, scenario, SHORT, privileged=True)
+    _, infos = vec.reset(seed=3)
+    assert "purple" in vec.step([[]])[4][0]["privileged"]

@@ -25,6 +25,10 @@ def test_follow_the_child_example(tmp_path):
 
 def test_learning_example(tmp_path):
     done = run_example("learn_cem.py", "--iterations", "1", "--population", "2", "--episodes", "1", "--jobs", "2",
-                       cwd=tmp_path)
+                       "--check-sessions", "2", "--out", "checked", cwd=tmp_path)
     assert done.returncode == 0, done.stderr
     assert "iteration 0:" in done.stdout
+    assert "| yoked-learned | 2 |" in done.stdout and "learned − yoked, paired by child" in done.stdout
+    for run in ("learned", "yoked-learned", "asocial"):
+        assert (tmp_path / "checked" / run / "episodes.jsonl").exists()
+    assert (tmp_path / "checked" / "check.json").exists()

@@ -29,28 +29,21 @@
 #include "freeplay/recording/pinsoro_csv.hpp"
 #include "freeplay/recording/poses.hpp"
 #include "freeplay/recording/publishers.hpp"
-#include "freeplay/recording/robot_links.hpp"
 #include "freeplay/recording/ros_messages.hpp"
 #include "freeplay/recording/session_files.hpp"
 #include "freeplay/recording/session_videos.hpp"
+#include "freeplay/recording/tick_topics.hpp"
 #include "message_builders.hpp"
 #include "freeplay/sim/sandtray.hpp"
-#include "freeplay/sim/screen.hpp"
-#include "freeplay/sim/markers.hpp"
-#include "freeplay/sim/zones.hpp"
 
 namespace freeplay::recording {
 
 namespace {
 
 using detail::kCameraLinks;
-using detail::point;
-using detail::pose_of;
 using detail::StaticLink;
 using detail::transform;
-using detail::yaw_quaternion;
 
-constexpr double kFootprintsAfterS = 1.0;  // the game publishes /footprints once, ~1 s after start
 constexpr double kCameraMaxPhaseS = 0.012;  // a 30 Hz camera's publishing phase stays well inside its 33 ms period
 // Voices of the adults (docs/recording.md, Audio): pitch, articulation rate and where they speak from.
 constexpr double kRobotPitchHz = 200.0;
@@ -97,8 +90,7 @@ struct BagRecorder::Impl {
   bool open = false;
   std::mutex mutex;
   RecordingStats stats;
-  std::uint64_t background_version = ~std::uint64_t{0};
-  bool footprints_written = false;
+  std::unique_ptr<TickTopics> tick_topics;  // the tick's real topics (made at begin)
   std::optional<double> freeplay_start;
   PinsoroCsv csv;           // the collated 30 Hz table of free play
   std::unique_ptr<PoseRecorder> poses;  // freeplay.poses.json
@@ -111,7 +103,6 @@ struct BagRecorder::Impl {
   std::map<std::string, std::string> notes;
   std::vector<Participant> participants;  // from the first snapshot (profiles complete at the end)
   std::map<std::string, double> camera_tf_t;
-  std::unique_ptr<NaoLinkFrames> nao_links;  // child-robot episodes: forward kinematics of the recorded joints
 
   // Camera images are compressed on the encoder threads; every bag write waits its turn in `pending`, so the bag
   // holds the messages in the order they were put, whatever the number of threads.
@@ -249,118 +240,10 @@ struct BagRecorder::Impl {
     if (encoding_error) std::rethrow_exception(encoding_error);
   }
 
-  /// Writes `transforms` as one /tf message of `publisher`, stamped when that publisher sends the tick `t`.
-  void put_tf(const std::string& publisher, double t, const std::vector<std::pair<std::string, Eigen::Isometry3d>>& frames,
-              const std::string& parent = "sandtray") {
-    const double published = clocks.publish(publisher, t);
-    const auto stamp = ros_time(published);
-    msg::TFMessage tf;
-    for (const auto& [child, pose] : frames) {
-      tf.transforms.push_back(transform(stamp, parent, child, pose.translation(), Eigen::Quaterniond(pose.rotation())));
-    }
-    put(topics::kTf, published, tf);
-  }
-
-  void write_tf(double t, const runner::EpisodeSnapshot& s) {
-    // The game's TF broadcasters: one per item and one per active touch, each on its own 10 Hz timer.
-    for (const auto& item : s.tray->items()) {
-      put_tf("game/" + item.name, t, {{item.name, pose_of({item.pose.x, item.pose.y, 0.0}, yaw_quaternion(item.pose.theta))}});
-    }
-    for (const auto& touch : s.tray->touches()) {
-      const auto name = fmt::format("touch{}", touch.finger);
-      put_tf("game/" + name, t, {{name, pose_of({touch.position.x(), touch.position.y(), 0.0}, Eigen::Quaterniond::Identity())}});
-    }
-    std::vector<std::pair<std::string, Eigen::Isometry3d>> links;  // sandtray_publisher: the URDF camera links
-    for (const auto& link : kCameraLinks) links.emplace_back(link.frame, pose_of(link.xyz, link.rotation()));
-    put_tf("sandtray_publisher", t, links);
-    for (const auto& child : s.children) {  // the head trackers
-      const Eigen::Vector3d direction = child.gaze_point - child.head;
-      const auto q = direction.norm() > 1e-9 ? Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitX(), direction)
-                                              : Eigen::Quaterniond::Identity();
-      put_tf("gazr/" + child.seat, t, {{"child_" + child.seat + "_0", pose_of(child.head, q)}});
-    }
-    if (s.robot != nullptr) {
-      put_tf("robot_focus", t, {{"robot_focus", pose_of(s.robot->gaze_point, Eigen::Quaterniond::Identity())}});
-    }
-  }
-
-  void write_background(double t, const sim::Sandtray& tray) {
-    const cv::Mat& bgr = tray.background();
-    const double published = clocks.publish("sandtray/background", t);
-    msg::CompressedImage image;
-    image.header.stamp = ros_time(published);
-    image.header.frame_id = ros_string("sandtray");
-    image.format = ros_string("rgba8; png compressed bgr8");
-    std::vector<std::uint8_t> png;
-    cv::imencode(".png", bgr, png, {cv::IMWRITE_PNG_COMPRESSION, settings.png_level});
-    image.data.assign(png.begin(), png.end());
-    put(topics::kBackground, published, image, true);
-    const double zones_published = clocks.publish("zones_from_image", t);
-    msg::MarkerArray zones;  // zones_from_image: DELETEALL, then one closed LINE_STRIP per contour
-    msg::Marker clear;
-    clear.header.stamp = ros_time(zones_published);
-    clear.header.frame_id = ros_string("/sandtray");
-    clear.action = msg::Marker::DELETEALL;
-    zones.markers.push_back(clear);
-    for (const auto& zone : sim::zone_markers(tray)) zones.markers.push_back(line_marker(zone, clear.header.stamp));
-    put(topics::kZones, zones_published, zones, true);
-  }
-
-  // A visualization_msgs/Marker LINE_STRIP of one of the game's line markers.
-  static msg::Marker line_marker(const sim::LineMarker& line, const ros::Time& stamp) {
-    msg::Marker m;
-    m.header.stamp = stamp;
-    m.header.frame_id = ros_string(line.frame);
-    m.ns = ros_string(line.ns);
-    m.id = line.id;
-    m.type = msg::Marker::LINE_STRIP;
-    m.action = msg::Marker::ADD;
-    m.pose.orientation.w = 1.0;
-    m.scale.x = line.width;
-    m.color.r = line.rgb[0];
-    m.color.g = line.rgb[1];
-    m.color.b = line.rgb[2];
-    m.color.a = 1.0F;
-    for (const auto& v : line.points) m.points.push_back(point(v[0], v[1]));
-    return m;
-  }
-
-  void write_footprints(double t, const sim::Sandtray& tray) {
-    msg::MarkerArray footprints;  // FootprintsPublisher: one closed polygon per item, in the item's frame
-    const double published = clocks.publish("footprints", t);
-    for (const auto& item : sim::footprint_markers(tray)) {
-      footprints.markers.push_back(line_marker(item, ros_time(published)));
-    }
-    put(topics::kFootprints, published, footprints, true);
-  }
-
-  void write_robot(double t, const runner::RobotSnapshot& robot) {
-    msg::JointState joints;
-    const double published = clocks.publish("naoqi_driver/joint_states", t);
-    joints.header.stamp = ros_time(published);
-    for (const auto& name : robot.joint_names) joints.name.push_back(ros_string(name));
-    joints.position.assign(robot.positions.begin(), robot.positions.end());
-    joints.velocity.assign(robot.velocities.begin(), robot.velocities.end());
-    joints.effort.assign(robot.efforts.begin(), robot.efforts.end());
-    put(topics::kJointStates, published, joints);
-    if (nao_links) {  // robot_state_publisher: the URDF links from the joint states, at the /tf rate
-      const double links_published = clocks.publish("robot_state_publisher", t);
-      msg::TFMessage links;
-      for (const auto& link : nao_links->compute(robot.joint_names, robot.positions)) {
-        links.transforms.push_back(transform(ros_time(links_published), link.parent, link.child,
-                                             link.parent_T_child.translation(),
-                                             Eigen::Quaterniond(link.parent_T_child.rotation())));
-      }
-      put(topics::kTf, links_published, links);
-    }
-    if (robot.finger) {
-      msg::PoseStamped pose;
-      const double pose_published = clocks.publish("move_sandbox_items", t);
-      pose.header.stamp = ros_time(pose_published);
-      pose.header.frame_id = ros_string("sandtray");
-      pose.pose.position = point(robot.finger->x(), robot.finger->y());
-      pose.pose.orientation.w = 1.0;
-      put(topics::kPoses, pose_published, pose);
+  /// Writes the tick's messages in their order.
+  void put_all(const std::vector<TopicMessage>& messages) {
+    for (const auto& m : messages) {
+      std::visit([&](const auto& payload) { put(m.topic, m.published, payload, m.latched); }, m.message);
     }
   }
 
@@ -404,15 +287,7 @@ struct BagRecorder::Impl {
     text.data = ros_string(json.dump());
     put(topics::kEvents, t, text);
     ++stats.events;
-    if (e.type == "interaction_event") {
-      msg::String message;
-      message.data = ros_string(e.data.value("message", ""));
-      put(topics::kInteractionEvents, t, message);
-    } else if (e.type == "say" && e.source == "robot") {
-      msg::String speech;
-      speech.data = ros_string(e.data.value("text", ""));
-      put(topics::kSpeech, t, speech);
-    }
+    put_all(tick_topics->event(t, e));  // interaction events, the robot's speech, the stages' signals
     if (e.type == "say" || e.type == "speech") {
       msg::String speech;
       speech.data = ros_string(nlohmann::json{{"t", e.t}, {"who", e.source}, {"data", e.data}}.dump());
@@ -420,11 +295,6 @@ struct BagRecorder::Impl {
     }
     if (e.source == "protocol" && e.type == "stage") {
       const auto stage = e.data.value("stage", "");
-      static const std::map<std::string, std::string> kSignals = {
-          {"tutorial", "start_tutorial"}, {"freeplay", "start_freeplay"}, {"debriefing", "blank_interface"}};
-      if (const auto it = kSignals.find(stage); it != kSignals.end()) {
-        put("/sandtray/signals/" + it->second, t, msg::Empty());
-      }
       if (stage == "freeplay") freeplay_start = e.t;
       if (freeplay_start || stage == "debriefing") {
         const double since = e.t - freeplay_start.value_or(e.t);
@@ -456,6 +326,12 @@ void BagRecorder::begin(const runner::EpisodeInfo& info) {
   d.id = info.id;
   d.seed = info.seed;
   d.clocks = PublisherClocks(info.seed);
+  TickTopicsOptions topics_options;
+  topics_options.png_level = d.settings.png_level;
+  const bool child_robot = info.scenario != nullptr && info.scenario->condition == "child-robot";
+  topics_options.streams = child_robot ? kBagStreams : kBagStreams & ~unsigned{kRobotLinks};
+  if (child_robot) topics_options.arm_reach_m = info.scenario->robot.arm_reach_m;
+  d.tick_topics = std::make_unique<TickTopics>(info.seed, topics_options);
   if (info.scenario != nullptr) {
     d.condition = info.scenario->condition;
     d.scenario_name = info.scenario->name;
@@ -500,7 +376,6 @@ void BagRecorder::begin(const runner::EpisodeInfo& info) {
     msg::String scenario;
     scenario.data = ros_string(YAML::Dump(info.scenario->source));
     d.put(topics::kScenario, 0.0, scenario, true);
-    if (info.scenario->condition == "child-robot") d.nao_links = std::make_unique<NaoLinkFrames>(info.scenario->robot.arm_reach_m);
   }
   msg::String episode;
   episode.data = ros_string(nlohmann::json{{"id", d.id}, {"seed", d.seed}, {"scenario", d.scenario_name}}.dump());
@@ -516,19 +391,11 @@ void BagRecorder::observe(const runner::EpisodeSnapshot& snapshot) {
     for (const auto& c : snapshot.children) d.participants.push_back({c.seat, c.age_years, c.gender, "na"});
   }
   for (const auto& e : snapshot.new_events) d.write_event(t, e);
-  d.write_tf(t, snapshot);
+  d.put_all(d.tick_topics->frames(snapshot));
   if (!d.poses) d.poses = std::make_unique<PoseRecorder>(d.paths.dir);
   d.csv.observe(snapshot, d.poses->observe(snapshot));
   d.write_audio(t, snapshot);
-  if (snapshot.tray->background_version() != d.background_version) {
-    d.background_version = snapshot.tray->background_version();
-    d.write_background(t, *snapshot.tray);
-  }
-  if (!d.footprints_written && t >= kFootprintsAfterS - 1e-9) {
-    d.footprints_written = true;
-    d.write_footprints(t, *snapshot.tray);
-  }
-  if (snapshot.robot != nullptr) d.write_robot(t, *snapshot.robot);
+  d.put_all(d.tick_topics->state(snapshot));
 }
 
 void BagRecorder::write(const stage::FramePack& frame) {

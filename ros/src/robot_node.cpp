@@ -16,7 +16,6 @@
 #include "freeplay/ros/graph.hpp"
 #include "freeplay/runner/episode.hpp"
 #include "freeplay/runner/robot_side.hpp"
-#include "freeplay/ros/graph_messages.hpp"
 
 namespace freeplay::ros_live {
 
@@ -24,6 +23,11 @@ namespace {
 
 constexpr double kTickS = 0.1;             // decision and /poses rate (10 Hz)
 constexpr double kTouchFreshS = 0.35;      // a touchN frame older than this is a lifted finger (the game sends 10 Hz)
+
+/// The yaw of a rotation (qx, qy, qz, qw).
+double rotation_yaw(const std::array<double, 4>& q) {
+  return std::atan2(2.0 * (q[3] * q[2] + q[0] * q[1]), 1.0 - 2.0 * (q[1] * q[1] + q[2] * q[2]));
+}
 
 /// The sandtray as the graph shows it at one tick.
 struct GraphWorld {

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <string_view>
 #include <set>
 #include <stdexcept>
 #include <thread>
@@ -20,16 +21,12 @@
 #include "freeplay/runner/sandtray_world.hpp"
 #include "freeplay/runner/scenario.hpp"
 #include "freeplay/sim/screen.hpp"
-#include "freeplay/ros/graph_messages.hpp"
+#include "freeplay/ros/graph_topics.hpp"
 #include "freeplay/ros/localisation_node.hpp"
-#include "freeplay/runner/camera_rig.hpp"
 
 namespace freeplay::ros_live {
 
 namespace {
-
-constexpr double kBackgroundPeriodS = 0.25;  // the game checks the drawing every 250 ms
-constexpr int kMapEveryTicks = 2;            // map_and_plan publishes /map at 5 Hz
 
 // What a served episode shares between its publisher (observer) and its external robot.
 struct Live {
@@ -44,7 +41,7 @@ void serve_plans(GraphRobot& robot, const sim::Sandtray& tray);
 /// Publishes every tick of the episode on the graph, paced to the wall clock.
 class LivePublisher final : public runner::EpisodeObserver {
  public:
-  LivePublisher(Live& live, double rate, bool sim_robot) : live_(live), rate_(rate), sim_robot_(sim_robot) {}
+  LivePublisher(Live& live, double rate, GraphTopics topics) : live_(live), rate_(rate), topics_(std::move(topics)) {}
 
   void observe(const runner::EpisodeSnapshot& s) override {
     const auto due = pace(s.t);
@@ -52,38 +49,12 @@ class LivePublisher final : public runner::EpisodeObserver {
     g.maintain();
     const double stamp = live_.stamp(s.t);
     g.clock(stamp);
-    auto frames = game_frames(*s.tray);
-    const auto links = camera_links();
-    frames.insert(frames.end(), links.begin(), links.end());
-    if (reach_ && (localisation_ == nullptr || !localisation_->publishes_arm_reach())) {
-      frames.push_back(arm_reach_frame(*reach_));
-    }
-    g.tf(stamp, frames);
+    const bool publish_reach = reach_ && (localisation_ == nullptr || !localisation_->publishes_arm_reach());
+    topics_.set_arm_reach(publish_reach ? reach_ : std::nullopt);
+    for (const auto& m : topics_.tick(s)) g.publish(m);
     lateness_ms_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - due).count());
     last_t_ = s.t;
-    // The periodic topics first, the expensive latched ones (background PNG, zones) after them.
-    if (s.robot != nullptr) {
-      g.joint_states(stamp, {s.robot->joint_names, s.robot->positions, s.robot->velocities, s.robot->efforts});
-      if (sim_robot_ && s.robot->finger) {  // our in-process move_sandbox_items streaming /poses
-        g.finger(stamp, s.robot->finger->x(), s.robot->finger->y());
-        trajectory_.push_back({s.robot->finger->x(), s.robot->finger->y()});
-        g.trajectory(stamp, trajectory_);
-      } else {
-        trajectory_.clear();
-      }
-    }
-    if (tick_++ % kMapEveryTicks == 0) g.map(stamp, occupancy_map(*s.tray));
-    for (const auto& e : s.new_events) publish_event(e);
-    if (!footprints_sent_) {
-      g.footprints(stamp, footprint_markers(*s.tray));
-      footprints_sent_ = true;
-    }
-    if (s.tray->background_version() != background_version_ && s.t - background_t_ >= kBackgroundPeriodS - 1e-9) {
-      background_version_ = s.tray->background_version();
-      background_t_ = s.t;
-      g.background(stamp, background_image(*s.tray));
-      g.zones(stamp, zone_markers(*s.tray));
-    }
+    for (const auto& e : s.new_events) publish_event(s.t, e);
     if (robot_ != nullptr) serve_plans(*robot_, *s.tray);
     if (s.stage != "freeplay") {
       for (const auto& p : g.take_poses()) {  // as the game: poses are ignored while the sandbox is hidden
@@ -98,6 +69,9 @@ class LivePublisher final : public runner::EpisodeObserver {
       if (!localised.empty()) g.tf(stamp, localised);
     }
   }
+
+  /// The tick topics it publishes.
+  const GraphTopics& topics() const { return topics_; }
 
   /// Answers `plan_motion` through `robot` at every tick (`--robot external`).
   void set_planner(GraphRobot* robot) { robot_ = robot; }
@@ -141,34 +115,24 @@ class LivePublisher final : public runner::EpisodeObserver {
     return due;
   }
 
-  void publish_event(const Event& e) {
-    auto& g = *live_.graph;
-    if (e.type == "interaction_event") g.interaction_event(e.data.value("message", ""));
-    if (e.type == "say" && e.source == "robot") g.speech(e.data.value("text", ""));
-    if (e.source == "protocol" && e.type == "stage") {
-      static const std::map<std::string, std::string> kSignals = {
-          {"tutorial", "start_tutorial"}, {"freeplay", "start_freeplay"}, {"debriefing", "blank_interface"}};
-      if (const auto it = kSignals.find(e.data.value("stage", "")); it != kSignals.end()) {
-        // A stage another node signalled is not signalled again (the game never echoes a signal).
-        if (received_.erase(it->second) == 0) g.signal(it->second);
-      }
+  void publish_event(double t, const Event& e) {
+    for (const auto& m : topics_.event(t, e)) {
+      // A stage another node signalled is not signalled again (the game never echoes a signal).
+      const std::string_view prefix = recording::topics::kSignalsPrefix;
+      if (m.topic.starts_with(prefix) && received_.erase(m.topic.substr(prefix.size())) != 0) continue;
+      live_.graph->publish(m);
     }
   }
 
   Live& live_;
   double rate_;
-  bool sim_robot_;
+  GraphTopics topics_;
   std::optional<runner::ReachDisc> reach_;
   GraphRobot* robot_ = nullptr;
   ServedLocalisation* localisation_ = nullptr;
   double last_t_ = 0.0;
   std::optional<std::chrono::steady_clock::time_point> start_;
   double t0_ = 0.0;
-  bool footprints_sent_ = false;
-  std::uint64_t background_version_ = ~std::uint64_t{0};
-  double background_t_ = -1e9;
-  long tick_ = 0;
-  std::vector<std::array<double, 2>> trajectory_;
   std::vector<double> lateness_ms_;
   std::set<std::string> received_;  // stage signals received from the graph, not to be echoed
 };
@@ -356,9 +320,12 @@ struct GraphSide::Impl {
   Impl(const runner::Scenario& scenario, std::uint64_t seed, const ServeOptions& options)
       : graph(make_graph(scenario, options)),
         live{graph.get(), ros_graph::wall_now()},
-        publisher(live, options.rate, !options.external_robot),
+        publisher(live, options.rate,
+                  GraphTopics(seed, static_cast<std::uint64_t>(std::llround(live.stamp_origin * 1e9)),
+                              !options.external_robot, scenario.robot.arm_reach_m)),
         cameras(live, scenario.recording.jpeg_quality),
         publisher_ref(publisher) {
+    for (const auto& declaration : publisher.topics().declarations()) graph->advertise(declaration);
     const bool child_robot = scenario.condition == "child-robot";
     if (child_robot) {
       const auto body = runner::SharedModels::shipped().robot_body(scenario.robot.mode, scenario.robot.arm_reach_m);

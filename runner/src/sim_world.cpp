@@ -157,6 +157,14 @@ void SimWorld::snapshot(EpisodeSnapshot& out, std::string_view stage) {
       if (c.owns_finger(touch.finger)) s.touches.emplace_back(touch.finger, touch.position);
     }
     s.speaking = stage == "freeplay" && c.speaking(freeplay_t);
+    const auto& agent = *c.agent;
+    for (std::size_t a = 0; a < agents::kAxisCount; ++a) {
+      s.hidden.labels[a] = agents::label_name(agents::kAxes[a], agent.labels().index(agents::kAxes[a]));
+    }
+    s.hidden.motivation = agent.motivation();
+    s.hidden.boredom = agent.boredom();
+    s.hidden.answer_expectation = agent.answer_expectation();
+    s.hidden.wants_to_stop = agent.wants_to_stop();
     s.coded = {};
     if (started && coder_) {
       for (std::size_t a = 0; a < agents::kAxisCount; ++a) {

@@ -15,6 +15,7 @@ import socket
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 import xmlrpc.client
 
@@ -103,19 +104,31 @@ def rospy_client():
 
 
 def item_positions(rospy, timeout=10.0):
-    """The latest (x, y, yaw) of every item on /tf (waits until all ten arrived)."""
+    """The latest (x, y, yaw) of every frame in `sandtray` on /tf (waits until all ten items arrived: each item has
+    its own broadcaster, so a subscriber collects several messages)."""
     from tf2_msgs.msg import TFMessage
     seen = {}
+    lock = threading.Lock()
+
+    def on_tf(msg):
+        with lock:
+            for t in msg.transforms:
+                if t.header.frame_id in ("sandtray", "/sandtray"):
+                    q = t.transform.rotation
+                    seen[t.child_frame_id] = (t.transform.translation.x, t.transform.translation.y,
+                                              math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z)))
+
+    subscriber = rospy.Subscriber("/tf", TFMessage, on_tf)
     deadline = time.monotonic() + timeout
-    while len([i for i in ITEMS if i in seen]) < len(ITEMS):
-        check(time.monotonic() < deadline, f"not every item on /tf within {timeout} s (seen: {sorted(seen)})")
-        msg = rospy.wait_for_message("/tf", TFMessage, timeout=timeout)
-        for t in msg.transforms:
-            if t.header.frame_id in ("sandtray", "/sandtray"):
-                q = t.transform.rotation
-                seen[t.child_frame_id] = (t.transform.translation.x, t.transform.translation.y,
-                                          math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z)))
-    return seen
+    try:
+        while True:
+            with lock:
+                if all(i in seen for i in ITEMS):
+                    return dict(seen)
+                check(time.monotonic() < deadline, f"not every item on /tf within {timeout} s (seen: {sorted(seen)})")
+            time.sleep(0.05)
+    finally:
+        subscriber.unregister()
 
 
 def check_md5sums():

@@ -94,6 +94,51 @@ TEST(EpisodeWebHooks, TheSnapshotCarriesTheCodersCurrentLabelsFromFreePlayOn) {
   }
 }
 
+TEST(EpisodeWebHooks, TheSnapshotCarriesTheChildsHiddenStateAsItsOwnTimelineHasIt) {
+  // Kept apart from what the cameras and the coder see: freeplay.Env offers it only as privileged information.
+  const auto s = scenario("child-child");
+  struct Hidden {
+    std::string stage;
+    std::array<std::string, 3> labels;
+    double motivation = 0.0;
+    bool wants_to_stop = false;
+  };
+  class KeepHidden final : public EpisodeObserver {
+   public:
+    explicit KeepHidden(std::vector<Hidden>& ticks) : ticks_(ticks) {}
+    void observe(const EpisodeSnapshot& snapshot) override {
+      const auto& h = snapshot.children[0].hidden;
+      ticks_.push_back({std::string(snapshot.stage), {std::string(h.labels[0]), std::string(h.labels[1]),
+                        std::string(h.labels[2])}, h.motivation, h.wants_to_stop});
+    }
+
+   private:
+    std::vector<Hidden>& ticks_;
+  };
+  std::vector<Hidden> ticks;
+  EpisodeObservers observers;
+  observers.push_back(std::make_unique<KeepHidden>(ticks));
+  const std::atomic<bool> stop{false};
+  const auto r = run_episode(s, 11, SharedModels::shipped(), stop, observers, {&s, "hidden", 11});
+  const Hidden* last_freeplay = nullptr;
+  for (const auto& t : ticks) {
+    EXPECT_GE(t.motivation, 0.0);
+    EXPECT_LE(t.motivation, 1.0);
+    if (t.stage == "freeplay") last_freeplay = &t;
+  }
+  ASSERT_NE(last_freeplay, nullptr);
+  // The child's own (internal) timeline ends in the labels the last free-play snapshot showed.
+  for (std::size_t a = 0; a < 3; ++a) {
+    const agents::LabelInterval* last = nullptr;
+    for (const auto& bout : r.children.front().internal) {
+      if (bout.axis == agents::kAxes[a] && (last == nullptr || bout.start >= last->start)) last = &bout;
+    }
+    ASSERT_NE(last, nullptr);
+    EXPECT_EQ(std::string(last->name()), last_freeplay->labels[a]) << agents::axis_name(agents::kAxes[a]);
+  }
+  EXPECT_EQ(last_freeplay->wants_to_stop, r.children.front().quit_time_s >= 0.0);
+}
+
 TEST(EpisodeWebHooks, AnExternalRobotsSpeechIsTheRobotsSayHeardInTheRoom) {
   const auto s = scenario("child-robot");
   std::vector<Keep::Tick> ticks;

@@ -28,11 +28,11 @@ async function until(what, f, timeoutMs = 30000) {
     await sleep(100);
   }
 }
-// A minimal Foxglove client: subscribes to /tf and the background and decodes the first /tf message (ROS 1 encoding).
+// A minimal Foxglove client: subscribes to every channel and decodes /tf, the background, the joints and the camera.
 function foxglove(url) {
   return new Promise((resolve, reject) => {
     const ws = new WebSocket(url, ['foxglove.websocket.v1']);
-    const result = { protocol: '', serverInfo: false, topics: [], tfSchema: '', tf: [], links: new Set(), joints: 0, jpeg: false, camera: false };
+    const result = { protocol: '', serverInfo: false, topics: [], tfSchema: '', tf: [], links: new Set(), joints: 0, png: false, camera: false };
     const channels = {};
     const timer = setTimeout(() => { ws.close(); reject(new Error('no Foxglove messages')); }, 15000);
     ws.on('open', () => { result.protocol = ws.protocol; });
@@ -52,7 +52,7 @@ function foxglove(url) {
       const topic = channels[b.readUInt32LE(1) - 100].topic;
       let o = 13;
       const str = () => { const n = b.readUInt32LE(o); o += 4; const v = b.toString('utf8', o, o + n); o += n; return v; };
-      if (topic === '/tf') {  // the game's frames (sandtray → items) or the Nao's links (robot_state_publisher)
+      if (topic === '/tf') {  // one game broadcaster (sandtray → an item or a touch) or the Nao's links (robot_state_publisher)
         const count = b.readUInt32LE(o); o += 4;
         const frames = [];
         for (let i = 0; i < count; ++i) {
@@ -60,8 +60,8 @@ function foxglove(url) {
           const x = b.readDoubleLE(o), y = b.readDoubleLE(o + 8); o += 7 * 8;
           frames.push({ parent, child, x, y });
         }
-        if (frames.length && frames[0].parent === 'sandtray' && frames[0].child !== 'base_link') {
-          if (result.tf.length === 0) result.tf = frames;
+        if (frames.length === 1 && frames[0].parent === 'sandtray') {
+          if (!result.tf.some((t) => t.child === frames[0].child)) result.tf.push(frames[0]);
         } else {
           for (const f of frames) result.links.add(f.child);
         }
@@ -75,9 +75,9 @@ function foxglove(url) {
       }
       if (topic === '/sandtray/background/image/compressed') {
         o += 12; str(); const format = str(); const n = b.readUInt32LE(o);
-        result.jpeg = format === 'jpeg' && b[o + 4] === 0xff && b[o + 5] === 0xd8 && n > 1000;
+        result.png = format === 'rgba8; png compressed bgr8' && b[o + 4] === 0x89 && b[o + 5] === 0x50 && n > 1000;
       }
-      if (result.tf.length && result.jpeg && result.links.size && result.joints && result.camera) { clearTimeout(timer); ws.close(); resolve(result); }
+      if (result.tf.length >= 10 && result.png && result.links.size && result.joints && result.camera) { clearTimeout(timer); ws.close(); resolve(result); }
     });
     ws.on('error', reject);
   });
@@ -274,7 +274,7 @@ try {
   const serverItems = (await (await fetch(api('/api/state'))).json()).items;
   const near = fox.tf.filter((t) => { const i = serverItems.find((k) => k.name === t.child); return i && Math.hypot(i.x - t.x, i.y - t.y) < 0.05; });
   check(fox.tf.length >= 10 && near.length >= 8, '/tf messages decode to the items in the sandtray frame', `${near.length} of ${fox.tf.length} near`);
-  check(fox.jpeg, 'the background arrives as a JPEG sensor_msgs/CompressedImage');
+  check(fox.png, "the background arrives as the game's PNG sensor_msgs/CompressedImage (the bag's message)");
   check(fox.topics.includes('/joint_states') && fox.joints >= 20 && fox.links.size >= 10 && ['torso', 'Head'].every((l) => fox.links.has(l)),
         "the Nao's /joint_states and its links on /tf", `${fox.joints} joints, ${fox.links.size} links`);
   check(fox.camera, "the scenario's env_camera arrives as a JPEG CompressedImage in its optical frame");

@@ -2,15 +2,13 @@
 
 #include <fmt/format.h>
 
-#include <Eigen/Geometry>
+#include <map>
 #include <ros/serialization.h>
 
 #include "freeplay/recording/camera_topics.hpp"
-#include "freeplay/recording/robot_links.hpp"
 #include "freeplay/recording/ros_messages.hpp"
+#include "freeplay/recording/tick_topics.hpp"
 #include "freeplay/runner/episode_observer.hpp"
-#include "freeplay/sim/sandtray.hpp"
-#include "freeplay/sim/zones.hpp"
 
 namespace freeplay::web {
 
@@ -37,97 +35,39 @@ ros::Time stamp_of(std::uint64_t ns) {
   return t;
 }
 
-msg::TransformStamped planar(const ros::Time& stamp, const std::string& child, double x, double y, double yaw) {
-  msg::TransformStamped t;
-  t.header.stamp = stamp;
-  t.header.frame_id = recording::ros_string("sandtray");
-  t.child_frame_id = recording::ros_string(child);
-  t.transform.translation.x = x;
-  t.transform.translation.y = y;
-  const Eigen::Quaterniond q(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
-  t.transform.rotation.x = q.x();
-  t.transform.rotation.y = q.y();
-  t.transform.rotation.z = q.z();
-  t.transform.rotation.w = q.w();
-  return t;
+// The channels of the game's topics (and the Nao's, with `robot`), as recording::declared_topics declares them.
+std::vector<FoxgloveChannel> game_channels(bool robot) {
+  const unsigned nao = recording::kRobotLinks | recording::kJointStates;
+  std::vector<FoxgloveChannel> out;
+  for (const auto& d : recording::declared_topics(robot ? recording::kFoxgloveStreams : recording::kFoxgloveStreams & ~nao)) {
+    out.push_back({foxglove_channel(d.topic), d.topic, d.datatype, d.definition});
+  }
+  return out;
 }
 
-msg::Marker line_strip(const ros::Time& stamp, const std::string& frame, const std::string& ns, int id,
-                       const Polygon2& polygon, std::array<float, 3> rgb) {
-  msg::Marker m;
-  m.header.stamp = stamp;
-  m.header.frame_id = recording::ros_string(frame);
-  m.ns = recording::ros_string(ns);
-  m.id = id;
-  m.type = msg::Marker::LINE_STRIP;
-  m.action = msg::Marker::ADD;
-  m.pose.orientation.w = 1.0;
-  m.scale.x = 0.002;
-  m.color.r = rgb[0];
-  m.color.g = rgb[1];
-  m.color.b = rgb[2];
-  m.color.a = 1.0F;
-  for (std::size_t i = 0; i <= polygon.size() && !polygon.empty(); ++i) {  // closed: the first point again
-    msg::Point p;
-    p.x = polygon[i % polygon.size()].x();
-    p.y = polygon[i % polygon.size()].y();
-    m.points.push_back(p);
-  }
-  return m;
+recording::TickTopicsOptions foxglove_options(std::uint64_t origin_ns, double arm_reach_m) {
+  recording::TickTopicsOptions options;
+  options.streams = recording::kFoxgloveStreams;
+  options.origin_ns = origin_ns;
+  options.arm_reach_m = arm_reach_m;
+  return options;
 }
 
 }  // namespace
 
 const std::vector<FoxgloveChannel>& foxglove_channels() {
-  static const std::vector<FoxgloveChannel> kChannels = {
-      channel<msg::TFMessage>(kFoxgloveTf, "/tf"),
-      channel<msg::MarkerArray>(kFoxgloveZones, "/zones"),
-      channel<msg::MarkerArray>(kFoxgloveFootprints, "/footprints"),
-      channel<msg::CompressedImage>(kFoxgloveBackground, "/sandtray/background/image/compressed")};
+  static const std::vector<FoxgloveChannel> kChannels = game_channels(false);
   return kChannels;
 }
 
 std::vector<FoxgloveChannel> foxglove_channels(const std::vector<std::string>& cameras, bool robot) {
-  auto out = foxglove_channels();
-  if (robot) out.push_back(channel<msg::JointState>(kFoxgloveJointStates, "/joint_states"));
+  auto out = game_channels(robot);
   int id = kFoxgloveFirstCamera;
   for (const auto& name : cameras) {
     const auto topic = recording::camera_topics(name).rgb_image;
     out.push_back(channel<msg::CompressedImage>(id++, topic.starts_with('/') ? topic : fmt::format("/{}", topic)));
   }
   return out;
-}
-
-FoxgloveMessage foxglove_robot_tf(const std::vector<recording::LinkTransform>& links, std::uint64_t stamp_ns) {
-  const auto stamp = stamp_of(stamp_ns);
-  msg::TFMessage tf;
-  for (const auto& link : links) {
-    msg::TransformStamped t;
-    t.header.stamp = stamp;
-    t.header.frame_id = recording::ros_string(link.parent);
-    t.child_frame_id = recording::ros_string(link.child);
-    const Eigen::Vector3d p = link.parent_T_child.translation();
-    const Eigen::Quaterniond q(link.parent_T_child.rotation());
-    t.transform.translation.x = p.x();
-    t.transform.translation.y = p.y();
-    t.transform.translation.z = p.z();
-    t.transform.rotation.x = q.x();
-    t.transform.rotation.y = q.y();
-    t.transform.rotation.z = q.z();
-    t.transform.rotation.w = q.w();
-    tf.transforms.push_back(std::move(t));
-  }
-  return message(kFoxgloveTf, stamp_ns, tf);
-}
-
-FoxgloveMessage foxglove_joint_states(const runner::RobotSnapshot& robot, std::uint64_t stamp_ns) {
-  msg::JointState joints;
-  joints.header.stamp = stamp_of(stamp_ns);
-  for (const auto& name : robot.joint_names) joints.name.push_back(recording::ros_string(name));
-  joints.position.assign(robot.positions.begin(), robot.positions.end());
-  joints.velocity.assign(robot.velocities.begin(), robot.velocities.end());
-  joints.effort.assign(robot.efforts.begin(), robot.efforts.end());
-  return message(kFoxgloveJointStates, stamp_ns, joints);
 }
 
 FoxgloveMessage foxglove_camera(int channel_id, const std::string& frame_id, const std::vector<std::uint8_t>& jpeg,
@@ -140,44 +80,32 @@ FoxgloveMessage foxglove_camera(int channel_id, const std::string& frame_id, con
   return message(channel_id, stamp_ns, image);
 }
 
-FoxgloveMessage foxglove_tf(const sim::Sandtray& tray, std::uint64_t stamp_ns) {
-  const auto stamp = stamp_of(stamp_ns);
-  msg::TFMessage tf;
-  for (const auto& item : tray.items()) tf.transforms.push_back(planar(stamp, item.name, item.pose.x, item.pose.y, item.pose.theta));
-  for (const auto& touch : tray.touches()) {
-    tf.transforms.push_back(planar(stamp, "touch" + std::to_string(touch.finger), touch.position.x(), touch.position.y(), 0.0));
-  }
-  return message(kFoxgloveTf, stamp_ns, tf);
+int foxglove_channel(const std::string& topic) {
+  static const std::map<std::string, int> kChannels = {{recording::topics::kTf, kFoxgloveTf},
+                                                       {recording::topics::kZones, kFoxgloveZones},
+                                                       {recording::topics::kFootprints, kFoxgloveFootprints},
+                                                       {recording::topics::kBackground, kFoxgloveBackground},
+                                                       {recording::topics::kJointStates, kFoxgloveJointStates}};
+  const auto it = kChannels.find(topic);
+  return it == kChannels.end() ? 0 : it->second;
 }
 
-FoxgloveMessage foxglove_zones(const sim::Sandtray& tray, std::uint64_t stamp_ns) {
-  const auto stamp = stamp_of(stamp_ns);
-  msg::MarkerArray zones;
-  for (const auto& zone : tray.zones().zones()) {
-    const auto rgb = sim::zone_marker_rgb(zone.colour);
-    zones.markers.push_back(line_strip(stamp, "sandtray", "sandbox_zone_" + zone.colour, zone.id, zone.polygon,
-                                       {rgb[0] / 255.F, rgb[1] / 255.F, rgb[2] / 255.F}));
-  }
-  return message(kFoxgloveZones, stamp_ns, zones);
-}
+FoxgloveTopics::FoxgloveTopics(std::uint64_t seed, std::uint64_t origin_ns, double arm_reach_m)
+    : origin_ns_(origin_ns), topics_(std::make_unique<recording::TickTopics>(seed, foxglove_options(origin_ns, arm_reach_m))) {}
 
-FoxgloveMessage foxglove_footprints(const sim::Sandtray& tray, std::uint64_t stamp_ns) {
-  const auto stamp = stamp_of(stamp_ns);
-  msg::MarkerArray footprints;
-  int id = 0;
-  for (const auto& [name, polygon] : tray.published_footprints()) {
-    footprints.markers.push_back(line_strip(stamp, name, name, id++, polygon, {0.F, 1.F, 0.F}));
-  }
-  return message(kFoxgloveFootprints, stamp_ns, footprints);
-}
+FoxgloveTopics::~FoxgloveTopics() = default;
 
-FoxgloveMessage foxglove_background(const std::string& jpeg, std::uint64_t stamp_ns) {
-  msg::CompressedImage image;
-  image.header.stamp = stamp_of(stamp_ns);
-  image.header.frame_id = recording::ros_string("sandtray");
-  image.format = recording::ros_string("jpeg");
-  image.data.assign(jpeg.begin(), jpeg.end());
-  return message(kFoxgloveBackground, stamp_ns, image);
+std::vector<FoxgloveMessage> FoxgloveTopics::tick(const runner::EpisodeSnapshot& snapshot) {
+  std::vector<FoxgloveMessage> out;
+  for (const auto& m : topics_->tick(snapshot)) {
+    const int channel = foxglove_channel(m.topic);
+    if (channel == 0) continue;
+    const auto serialized = recording::serialize(m, origin_ns_);
+    const auto& bytes = *serialized.bytes;
+    out.push_back({channel, serialized.stamp_ns, std::make_shared<const std::string>(bytes.begin(), bytes.end()),
+                   serialized.declaration.latched});
+  }
+  return out;
 }
 
 std::string foxglove_frame(std::uint32_t subscription, const FoxgloveMessage& message) {

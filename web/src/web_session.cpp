@@ -15,7 +15,6 @@
 
 #include "freeplay/recording/bag_recorder.hpp"
 #include "freeplay/recording/camera_topics.hpp"
-#include "freeplay/recording/robot_links.hpp"
 #include "freeplay/runner/camera_rig.hpp"
 #include "freeplay/runner/frame_sink.hpp"
 #include "freeplay/sim/sandtray.hpp"
@@ -139,14 +138,13 @@ class Session {
     freeplay_t_ = freeplay_t;
   }
 
-  // Keeps the new background (JPEG) and zones for the API; returns the JPEG.
-  std::string set_background(const sim::Sandtray& tray, nlohmann::json zones) {
+  // Keeps the new background (JPEG) and zones for the API.
+  void set_background(const sim::Sandtray& tray, nlohmann::json zones) {
     std::vector<uchar> jpeg;
     cv::imencode(".jpg", tray.background(), jpeg, {cv::IMWRITE_JPEG_QUALITY, kBackgroundJpegQuality});
     std::lock_guard lock(mutex_);
     background_ = std::string(jpeg.begin(), jpeg.end());
     zones_ = std::move(zones);
-    return background_;
   }
 
   HttpReply api(const HttpRequest& r) {
@@ -325,29 +323,20 @@ class WebObserver final : public runner::EpisodeObserver {
       session_.experiment().freeplay_started(static_cast<std::uint64_t>(tick_ms * 1e6));
     }
     auto frame = tick_json(s);
-    const auto stamp_ns = static_cast<std::uint64_t>(tick_ms * 1e6);
-    std::vector<FoxgloveMessage> foxglove;
-    if (server_.foxglove_clients() > 0) {
-      foxglove.push_back(foxglove_tf(*s.tray, stamp_ns));
-      if (s.robot != nullptr) {  // robot_state_publisher's links and naoqi_driver's joint states
-        if (!nao_links_) nao_links_ = std::make_unique<recording::NaoLinkFrames>(info_.scenario->robot.arm_reach_m);
-        foxglove.push_back(foxglove_robot_tf(nao_links_->compute(s.robot->joint_names, s.robot->positions), stamp_ns));
-        foxglove.push_back(foxglove_joint_states(*s.robot, stamp_ns));
-      }
-    }
-    if (!footprints_latched_) {
-      footprints_latched_ = true;
-      server_.latch_foxglove(foxglove_footprints(*s.tray, stamp_ns));
-    }
     if (s.tray->background_version() != background_version_) {
       background_version_ = s.tray->background_version();
       auto zones = zones_json(*s.tray);
       frame["zones"] = zones;
-      const auto jpeg = session_.set_background(*s.tray, std::move(zones));
-      for (auto m : {foxglove_zones(*s.tray, stamp_ns), foxglove_background(jpeg, stamp_ns)}) {
-        server_.latch_foxglove(m);
-        foxglove.push_back(std::move(m));
-      }
+      session_.set_background(*s.tray, std::move(zones));
+    }
+    if (!foxglove_topics_) {  // the session's time base: sandtray time 0 is this tick's wall-clock time minus t
+      const auto origin_ns = static_cast<std::uint64_t>(tick_ms * 1e6) - static_cast<std::uint64_t>(std::llround(s.t * 1e9));
+      foxglove_topics_ = std::make_unique<FoxgloveTopics>(info_.seed, origin_ns, info_.scenario->robot.arm_reach_m);
+    }
+    std::vector<FoxgloveMessage> foxglove;
+    for (auto& m : foxglove_topics_->tick(s)) {  // the bag's and the live graph's messages (recording::TickTopics)
+      if (m.latched) server_.latch_foxglove(m);
+      if (server_.foxglove_clients() > 0) foxglove.push_back(std::move(m));
     }
     if (!foxglove.empty()) server_.publish_foxglove(std::move(foxglove));
     camera(s, frame);
@@ -446,13 +435,12 @@ class WebObserver final : public runner::EpisodeObserver {
   CameraSink camera_sink_;
   runner::Scenario camera_scenario_;
   std::unique_ptr<runner::CameraRig> rig_;
-  std::unique_ptr<recording::NaoLinkFrames> nao_links_;  // built when the first Foxglove client wants the Nao
+  std::unique_ptr<FoxgloveTopics> foxglove_topics_;  // made at the first tick
   std::string camera_name_;
   std::optional<Clock::time_point> start_;
   double t0_ = 0.0;
   std::uint64_t background_version_ = ~std::uint64_t{0};
   bool freeplay_seen_ = false;
-  bool footprints_latched_ = false;
   std::uint64_t seq_ = 0;
 };
 

@@ -5,20 +5,17 @@
 #include <freeplay_sandbox_msgs/PlaygroundPlan.h>
 #include <geometry_msgs/PointStamped.h>
 #include <geometry_msgs/PoseStamped.h>
-#include <nav_msgs/OccupancyGrid.h>
 #include <ros/ros.h>
 #include <rosgraph_msgs/Clock.h>
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/CompressedImage.h>
-#include <sensor_msgs/Image.h>
-#include <sensor_msgs/JointState.h>
 #include <spdlog/spdlog.h>
 #include <std_msgs/Empty.h>
 #include <std_msgs/String.h>
 #include <tf2_msgs/TFMessage.h>
-#include <visualization_msgs/MarkerArray.h>
 
 #include <chrono>
+#include <cstring>
 #include <cmath>
 #include <condition_variable>
 #include <deque>
@@ -28,6 +25,53 @@
 
 #include "freeplay/ros/graph.hpp"
 #include "master_watch.hpp"
+
+namespace freeplay::ros_graph {
+namespace {
+/// A message already serialised: roscpp sends its bytes as they are, with the type it names.
+struct RawMessage {
+  const SerializedMessage* message = nullptr;  ///< the bytes and their type
+};
+}  // namespace
+}  // namespace freeplay::ros_graph
+
+namespace ros::message_traits {
+/// The type's MD5 sum travels with the message.
+template <>
+struct MD5Sum<freeplay::ros_graph::RawMessage> {
+  static const char* value() { return "*"; }
+  static const char* value(const freeplay::ros_graph::RawMessage& m) { return m.message->md5sum.c_str(); }
+};
+/// The type's name travels with the message.
+template <>
+struct DataType<freeplay::ros_graph::RawMessage> {
+  static const char* value() { return "*"; }
+  static const char* value(const freeplay::ros_graph::RawMessage& m) { return m.message->datatype.c_str(); }
+};
+/// The type's definition travels with the message.
+template <>
+struct Definition<freeplay::ros_graph::RawMessage> {
+  static const char* value() { return ""; }
+  static const char* value(const freeplay::ros_graph::RawMessage& m) { return m.message->definition.c_str(); }
+};
+}  // namespace ros::message_traits
+
+namespace ros::serialization {
+/// Writes the serialised bytes unchanged.
+template <>
+struct Serializer<freeplay::ros_graph::RawMessage> {
+  /// Copies the bytes into the stream.
+  template <typename Stream>
+  static void write(Stream& stream, const freeplay::ros_graph::RawMessage& m) {
+    const auto& bytes = *m.message->bytes;
+    if (!bytes.empty()) std::memcpy(stream.advance(static_cast<std::uint32_t>(bytes.size())), bytes.data(), bytes.size());
+  }
+  /// The number of bytes.
+  static std::uint32_t serializedLength(const freeplay::ros_graph::RawMessage& m) {
+    return static_cast<std::uint32_t>(m.message->bytes->size());
+  }
+};
+}  // namespace ros::serialization
 
 namespace freeplay::ros_graph {
 
@@ -61,37 +105,16 @@ bool own(const std::string& publisher) {
   return publisher == ros::this_node::getName() || publisher == "unknown_publisher";
 }
 
-visualization_msgs::Marker line_marker(const ros::Time& stamp, const Polyline& p) {
-  visualization_msgs::Marker m;
-  m.header.stamp = stamp;
-  m.header.frame_id = p.frame;
-  m.ns = p.ns;
-  m.id = p.id;
-  m.type = visualization_msgs::Marker::LINE_STRIP;
-  m.action = visualization_msgs::Marker::ADD;
-  m.pose.orientation.w = 1.0;
-  m.scale.x = p.width;
-  m.color.r = p.rgb[0];
-  m.color.g = p.rgb[1];
-  m.color.b = p.rgb[2];
-  m.color.a = 1.0F;
-  for (const auto& v : p.points) {
-    geometry_msgs::Point q;
-    q.x = v[0];
-    q.y = v[1];
-    m.points.push_back(q);
-  }
-  return m;
-}
-
 }  // namespace
 
 struct SandtrayGraph::Impl {
   NodeOptions options;
   std::optional<ros::NodeHandle> nh;  // renewed with every registration
-  ros::Publisher clock, tf, footprints, zones, image, compressed, camera_info, map, events, speech, joints, poses,
-      markers;
-  std::map<std::string, ros::Publisher> signal_out;
+  ros::Publisher clock, tf, speech, poses;
+  std::map<std::string, ros::Publisher> topics;  // by topic, advertised at the first message (publish)
+  std::map<std::string, SerializedMessage> latched;  // the latched topics' last messages, sent again after a restart
+  std::vector<SerializedMessage> declared;           // topics advertised up front (advertise), again after a restart
+  std::map<std::string, ros::Publisher> signal_out;  // every signal advertised (the stages' go out through publish)
   std::map<std::string, ros::Publisher> cameras;  // by topic, advertised at the first frame
   std::vector<ros::Subscriber> subscribers;
   std::unique_ptr<NavigationServer> server;
@@ -99,12 +122,6 @@ struct SandtrayGraph::Impl {
   ros::AsyncSpinner spinner{4};
   MasterWatch master;
   int registered_with = 0;  // master.returns() at the last registration
-  // The latched topics' last messages, published again after a new registration.
-  std::optional<visualization_msgs::MarkerArray> last_footprints, last_zones;
-  std::optional<sensor_msgs::Image> last_image;
-  std::optional<sensor_msgs::CompressedImage> last_compressed;
-  std::optional<sensor_msgs::CameraInfo> last_camera_info;
-
   mutable std::mutex mutex;
   std::condition_variable answered;
   std::deque<FingerPose> poses_in;
@@ -130,17 +147,9 @@ struct SandtrayGraph::Impl {
     auto& handle = *nh;
     if (o.publish_clock) clock = handle.advertise<rosgraph_msgs::Clock>("/clock", 10);
     tf = handle.advertise<tf2_msgs::TFMessage>("/tf", 100);
-    footprints = handle.advertise<visualization_msgs::MarkerArray>("/footprints", 1, true);
-    zones = handle.advertise<visualization_msgs::MarkerArray>("/zones", 1, true);
-    image = handle.advertise<sensor_msgs::Image>("/sandtray/background/image", 1, true);
-    compressed = handle.advertise<sensor_msgs::CompressedImage>("/sandtray/background/image/compressed", 1, true);
-    camera_info = handle.advertise<sensor_msgs::CameraInfo>("/sandtray/background/camera_info", 1, true);
-    map = handle.advertise<nav_msgs::OccupancyGrid>("/map", 1);
-    events = handle.advertise<std_msgs::String>("sandtray/interaction_events", 10);
     speech = handle.advertise<std_msgs::String>("speech", 10);
-    joints = handle.advertise<sensor_msgs::JointState>("/joint_states", 10);
     poses = handle.advertise<geometry_msgs::PoseStamped>("/poses", 10);
-    markers = handle.advertise<visualization_msgs::Marker>("/visualization_markers", 10);
+    for (const auto& declaration : declared) publisher_of(declaration);
     for (const char* name : kSignals) {
       const std::string topic = std::string("sandtray/signals/") + name;
       signal_out[name] = handle.advertise<std_msgs::Empty>(topic, 1);
@@ -185,10 +194,9 @@ struct SandtrayGraph::Impl {
       cancels.clear();
       pending_goal.reset();
     }
-    for (auto* p : {&clock, &tf, &footprints, &zones, &image, &compressed, &camera_info, &map, &events, &speech,
-                    &joints, &poses, &markers}) {
-      p->shutdown();
-    }
+    for (auto* p : {&clock, &tf, &speech, &poses}) p->shutdown();
+    for (auto& [topic, p] : topics) p.shutdown();
+    topics.clear();
     for (auto& [name, p] : signal_out) p.shutdown();
     signal_out.clear();
     for (auto& [name, p] : cameras) p.shutdown();
@@ -207,13 +215,24 @@ struct SandtrayGraph::Impl {
     registered_with = returns;
     disconnect();
     connect();
-    if (last_footprints) footprints.publish(*last_footprints);
-    if (last_zones) zones.publish(*last_zones);
-    if (last_image) image.publish(*last_image);
-    if (last_compressed) compressed.publish(*last_compressed);
-    if (last_camera_info) camera_info.publish(*last_camera_info);
+    for (const auto& [topic, message] : latched) send(message);
     spdlog::info("registered every topic and server with the ROS master again");
   }
+
+  // The publisher of the topic `message` names, advertised on first use.
+  ros::Publisher& publisher_of(const SerializedMessage& message) {
+    auto it = topics.find(message.topic);
+    if (it == topics.end()) {
+      const std::uint32_t queue = message.latched ? 1 : message.topic == "/tf" ? 100 : 10;
+      ros::AdvertiseOptions advertise(message.topic, queue, message.md5sum, message.datatype, message.definition);
+      advertise.latch = message.latched;
+      it = topics.emplace(message.topic, nh->advertise(advertise)).first;
+    }
+    return it->second;
+  }
+
+  // Publishes `message` as it is.
+  void send(const SerializedMessage& message) { publisher_of(message).publish(RawMessage{&message}); }
 
   // Subscribes with the sender's connection header (a plain message callback loses the caller id).
   template <class M>
@@ -308,6 +327,16 @@ void SandtrayGraph::clock(double stamp) {
   impl_->clock.publish(msg);
 }
 
+void SandtrayGraph::advertise(const SerializedMessage& declaration) {
+  impl_->declared.push_back(declaration);
+  impl_->publisher_of(declaration);
+}
+
+void SandtrayGraph::publish(const SerializedMessage& message) {
+  impl_->send(message);
+  if (message.latched) impl_->latched[message.topic] = message;
+}
+
 void SandtrayGraph::tf(double stamp, const std::vector<Transform>& transforms) {
   tf2_msgs::TFMessage msg;
   for (const auto& t : transforms) {
@@ -327,92 +356,10 @@ void SandtrayGraph::tf(double stamp, const std::vector<Transform>& transforms) {
   impl_->tf.publish(msg);
 }
 
-void SandtrayGraph::footprints(double stamp, const std::vector<Polyline>& polygons) {
-  visualization_msgs::MarkerArray msg;
-  for (const auto& p : polygons) msg.markers.push_back(line_marker(stamp_of(stamp), p));
-  impl_->footprints.publish(msg);
-  impl_->last_footprints = std::move(msg);
-}
-
-void SandtrayGraph::zones(double stamp, const std::vector<Polyline>& polygons) {
-  visualization_msgs::MarkerArray msg;
-  visualization_msgs::Marker clear;
-  clear.header.stamp = stamp_of(stamp);
-  clear.header.frame_id = "/sandtray";
-  clear.action = visualization_msgs::Marker::DELETEALL;
-  msg.markers.push_back(clear);
-  for (const auto& p : polygons) msg.markers.push_back(line_marker(stamp_of(stamp), p));
-  impl_->zones.publish(msg);
-  impl_->last_zones = std::move(msg);
-}
-
-void SandtrayGraph::background(double stamp, const Image& image) {
-  sensor_msgs::Image raw;
-  raw.header.stamp = stamp_of(stamp);
-  raw.header.frame_id = "sandtray";
-  raw.width = static_cast<std::uint32_t>(image.width);
-  raw.height = static_cast<std::uint32_t>(image.height);
-  raw.encoding = "rgba8";
-  raw.step = raw.width * 4;
-  raw.data = image.rgba;
-  impl_->image.publish(raw);
-  sensor_msgs::CompressedImage png;
-  png.header = raw.header;
-  png.format = "rgba8; png compressed bgr8";
-  png.data = image.png;
-  impl_->compressed.publish(png);
-  sensor_msgs::CameraInfo info;  // the game's ImagePublisher: K[0] = K[4] = 1 / pixel2meter (px per m)
-  info.header = raw.header;
-  info.width = raw.width;
-  info.height = raw.height;
-  const double f = 1.0 / image.pixel2meter;
-  info.K = {f, 0, 0, 0, f, 0, 0, 0, 1};
-  impl_->camera_info.publish(info);
-  impl_->last_image = std::move(raw);
-  impl_->last_compressed = std::move(png);
-  impl_->last_camera_info = std::move(info);
-}
-
-void SandtrayGraph::map(double stamp, const Grid& grid) {
-  nav_msgs::OccupancyGrid msg;
-  msg.header.stamp = stamp_of(stamp);
-  msg.header.frame_id = "/sandtray";
-  msg.info.map_load_time = msg.header.stamp;
-  msg.info.resolution = static_cast<float>(grid.resolution);
-  msg.info.width = static_cast<std::uint32_t>(grid.width);
-  msg.info.height = static_cast<std::uint32_t>(grid.height);
-  msg.info.origin.position.x = grid.origin_x;
-  msg.info.origin.position.y = grid.origin_y;
-  msg.info.origin.orientation.w = 1.0;
-  msg.data = grid.cells;
-  impl_->map.publish(msg);
-}
-
-void SandtrayGraph::interaction_event(const std::string& message) {
-  std_msgs::String msg;
-  msg.data = message;
-  impl_->events.publish(msg);
-}
-
-void SandtrayGraph::signal(const std::string& name) {
-  const auto it = impl_->signal_out.find(name);
-  if (it != impl_->signal_out.end()) it->second.publish(std_msgs::Empty());
-}
-
 void SandtrayGraph::speech(const std::string& text) {
   std_msgs::String msg;
   msg.data = text;
   impl_->speech.publish(msg);
-}
-
-void SandtrayGraph::joint_states(double stamp, const JointStates& joints) {
-  sensor_msgs::JointState msg;
-  msg.header.stamp = stamp_of(stamp);
-  msg.name = joints.names;
-  msg.position = joints.positions;
-  msg.velocity = joints.velocities;
-  msg.effort = joints.efforts;
-  impl_->joints.publish(msg);
 }
 
 void SandtrayGraph::finger(double stamp, double x, double y) {
@@ -449,13 +396,6 @@ void SandtrayGraph::camera(double stamp, const CameraFrame& frame) {
   info.R = {1, 0, 0, 0, 1, 0, 0, 0, 1};
   info.P = {frame.K[0], 0, frame.K[2], 0, 0, frame.K[1], frame.K[3], 0, 0, 0, 1, 0};
   publisher(frame.info_topic, sensor_msgs::CameraInfo{}).publish(info);
-}
-
-void SandtrayGraph::trajectory(double stamp, const std::vector<std::array<double, 2>>& points) {
-  Polyline line{"/sandtray", "item_motion_traj", 0, points, {1.F, 0.F, 0.F}, 0.01};
-  auto marker = line_marker(stamp_of(stamp), line);
-  marker.lifetime = ros::Duration(1.0);
-  impl_->markers.publish(marker);
 }
 
 std::vector<FingerPose> SandtrayGraph::take_poses() {

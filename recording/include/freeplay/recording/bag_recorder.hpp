@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "freeplay/recording/tick_topics.hpp"
 #include "freeplay/runner/episode.hpp"
 #include "freeplay/runner/episode_observer.hpp"
 #include "freeplay/runner/frame_sink.hpp"
@@ -29,16 +30,8 @@ inline SessionPaths session_paths(const std::filesystem::path& dir) {
           dir / "freeplay.annotations.freeplay-sim.yaml", dir / "freeplay.bag.yaml"};
 }
 
-/// The topics the recorder writes (besides the camera topics of camera_topics()).
+/// The recorder's own topics (the tick's real topics are in tick_topics.hpp; the camera topics in camera_topics()).
 namespace topics {
-inline constexpr const char* kTf = "/tf";                                           ///< tf2_msgs/TFMessage
-inline constexpr const char* kFootprints = "/footprints";                           ///< MarkerArray, latched
-inline constexpr const char* kZones = "/zones";                                     ///< MarkerArray, latched
-inline constexpr const char* kBackground = "/sandtray/background/image/compressed";  ///< CompressedImage (PNG)
-inline constexpr const char* kPoses = "/poses";                                     ///< PoseStamped
-inline constexpr const char* kInteractionEvents = "/sandtray/interaction_events";   ///< std_msgs/String
-inline constexpr const char* kJointStates = "/joint_states";                        ///< sensor_msgs/JointState
-inline constexpr const char* kSpeech = "/speech";                                   ///< String: the robot's TTS text
 inline constexpr const char* kAllSpeech = "/freeplay/speech";                       ///< String: JSON, everyone's
 inline constexpr const char* kEvents = "/freeplay/events";                          ///< String: JSON, the event log
 inline constexpr const char* kAnnotations = "/freeplay/annotations";                ///< String: PInSoRo YAML

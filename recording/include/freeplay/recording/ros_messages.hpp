@@ -51,10 +51,12 @@ struct RosAllocator : std::allocator<T> {
 }  // namespace freeplay::recording
 
 #include <geometry_msgs/PoseStamped.h>
+#include <nav_msgs/OccupancyGrid.h>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/CompressedImage.h>
+#include <sensor_msgs/Image.h>
 #include <sensor_msgs/JointState.h>
 #include <std_msgs/Empty.h>
 #include <std_msgs/String.h>
@@ -73,6 +75,8 @@ using PoseStamped = geometry_msgs::PoseStamped_<Allocator>;         ///< geometr
 using Point = geometry_msgs::Point_<Allocator>;                     ///< geometry_msgs/Point
 using Quaternion = geometry_msgs::Quaternion_<Allocator>;           ///< geometry_msgs/Quaternion
 using CompressedImage = sensor_msgs::CompressedImage_<Allocator>;   ///< sensor_msgs/CompressedImage
+using Image = sensor_msgs::Image_<Allocator>;                       ///< sensor_msgs/Image
+using OccupancyGrid = nav_msgs::OccupancyGrid_<Allocator>;          ///< nav_msgs/OccupancyGrid
 using CameraInfo = sensor_msgs::CameraInfo_<Allocator>;             ///< sensor_msgs/CameraInfo
 using JointState = sensor_msgs::JointState_<Allocator>;             ///< sensor_msgs/JointState
 using Marker = visualization_msgs::Marker_<Allocator>;              ///< visualization_msgs/Marker

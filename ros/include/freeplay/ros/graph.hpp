@@ -31,33 +31,6 @@ struct Polyline {
   double width = 0.002;                           ///< scale.x (m)
 };
 
-/// The screen background as the game publishes it (`/sandtray/background/image`, rgba8, and its PNG).
-struct Image {
-  int width = 0;                      ///< px
-  int height = 0;                     ///< px
-  std::vector<std::uint8_t> rgba;     ///< width × height × 4 bytes, rows top first
-  std::vector<std::uint8_t> png;      ///< the same image PNG-encoded (`…/compressed`, format "rgba8; png compressed bgr8")
-  double pixel2meter = 0.0003125;     ///< m per px: camera_info K[0] = 1 / pixel2meter
-};
-
-/// sensor_msgs/JointState contents.
-struct JointStates {
-  std::vector<std::string> names;     ///< joint names
-  std::vector<double> positions;      ///< rad
-  std::vector<double> velocities;     ///< rad/s
-  std::vector<double> efforts;        ///< N·m
-};
-
-/// nav_msgs/OccupancyGrid contents (frame `/sandtray`).
-struct Grid {
-  int width = 0;                      ///< cells
-  int height = 0;                     ///< cells
-  double resolution = 0.005;          ///< m per cell
-  double origin_x = 0.0;              ///< m
-  double origin_y = -0.335;           ///< m
-  std::vector<std::int8_t> cells;     ///< row-major, row 0 at origin_y, 0–100
-};
-
 /// One camera frame as its driver publishes it: a JPEG sensor_msgs/CompressedImage and its CameraInfo.
 struct CameraFrame {
   std::string image_topic;         ///< e.g. "/naoqi_driver/camera/front/image_raw/compressed"
@@ -98,6 +71,16 @@ struct PlanRequest {
   double y = 0.0;            ///< goal position (in `frame`, m)
 };
 
+/// A message already in the ROS 1 wire format, with what its advertisement needs (recording::TickTopics makes them).
+struct SerializedMessage {
+  std::string topic;        ///< e.g. "/tf"
+  std::string datatype;     ///< e.g. "tf2_msgs/TFMessage"
+  std::string md5sum;       ///< the type's MD5 sum
+  std::string definition;   ///< the full message definition
+  bool latched = false;     ///< advertised latched (and published again after a master restart)
+  std::shared_ptr<const std::vector<std::uint8_t>> bytes;  ///< the serialised message
+};
+
 /// Options of a node.
 struct NodeOptions {
   std::string name;              ///< ros::init node name ("sandtray", "freeplay_robot")
@@ -125,30 +108,18 @@ class SandtrayGraph {
   void maintain();
   /// Publishes `/clock` (only with publish_clock).
   void clock(double stamp);
+  /// Advertises the topic of `declaration` (its bytes are not used) now and after every master restart.
+  void advertise(const SerializedMessage& declaration);
+  /// Publishes one message as it is (a topic not advertised yet is advertised at its first message).
+  void publish(const SerializedMessage& message);
   /// Publishes one `/tf` message with `transforms`.
   void tf(double stamp, const std::vector<Transform>& transforms);
-  /// Publishes `/footprints` (latched).
-  void footprints(double stamp, const std::vector<Polyline>& polygons);
-  /// Publishes `/zones` (latched; a DELETEALL marker first, as zones_from_image).
-  void zones(double stamp, const std::vector<Polyline>& polygons);
-  /// Publishes `/sandtray/background/image`, `…/compressed` and `…/camera_info` (latched).
-  void background(double stamp, const Image& image);
-  /// Publishes `/map`.
-  void map(double stamp, const Grid& grid);
-  /// Publishes `sandtray/interaction_events`.
-  void interaction_event(const std::string& message);
-  /// Publishes `sandtray/signals/<name>` (std_msgs/Empty).
-  void signal(const std::string& name);
   /// Publishes `speech` (std_msgs/String: the Nao's text to speech).
   void speech(const std::string& text);
-  /// Publishes `/joint_states`.
-  void joint_states(double stamp, const JointStates& joints);
   /// Publishes one `/poses` message (frame `/sandtray`) from our own move executor.
   void finger(double stamp, double x, double y);
   /// Publishes one camera frame (its topics are advertised at the first frame).
   void camera(double stamp, const CameraFrame& frame);
-  /// Publishes the move's trajectory so far on `/visualization_markers` (ns item_motion_traj, red, 1 s lifetime).
-  void trajectory(double stamp, const std::vector<std::array<double, 2>>& points);
 
   /// `/poses` received from other nodes since the last call (malformed ones are logged and dropped).
   std::vector<FingerPose> take_poses();

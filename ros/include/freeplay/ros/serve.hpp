@@ -20,7 +20,7 @@ struct ServeOptions {
   double master_timeout_s = 10.0;   ///< how long to wait for the ROS master
 };
 
-/// Publication timing of a served episode: how late each 10 Hz tick's `/tf` went out against its schedule.
+/// Publication timing of a served episode: how late each 10 Hz tick's topics went out against its schedule.
 struct ServeTiming {
   std::size_t ticks = 0;     ///< ticks published
   double p50_late_ms = 0.0;  ///< median lateness

@@ -25,6 +25,18 @@ namespace freeplay::runner {
 struct Scenario;
 struct EpisodeResult;
 
+/// Simulation only: a synthetic child's internal state, which no camera, coder or policy sees (freeplay.Env hands
+/// it to Python only as explicitly requested privileged information).
+struct ChildHiddenState {
+  /// The child's own labels (task engagement, social engagement, social attitude; PInSoRo names) before the
+  /// coder's delay and noise: what it intends to do.
+  std::array<std::string_view, 3> labels{};
+  double motivation = 0.0;          ///< motivation drive in [0, 1]
+  double boredom = 0.0;             ///< boredom drive (≥ 0)
+  double answer_expectation = 0.0;  ///< how much it expects its partner to answer a bid, in [0, 1]
+  bool wants_to_stop = false;       ///< it has decided to stop playing
+};
+
 /// One seated child as the cameras see it.
 struct ChildSnapshot {
   std::string seat;                              ///< "purple" | "yellow"
@@ -38,6 +50,8 @@ struct ChildSnapshot {
   /// Simulation only: the coder's current labels (task engagement, social engagement, social attitude; the
   /// PInSoRo names), empty before free play.
   std::array<std::string_view, 3> coded{};
+  /// Simulation only: the child model's internal state (observers that stand for sensors must not use it).
+  ChildHiddenState hidden;
 };
 
 /// The robot as the cameras and `joint_states` see it (child-robot episodes only).

@@ -1,6 +1,7 @@
 #pragma once
 // The Foxglove WebSocket protocol side of the web server (`foxglove.websocket.v1`, ROS 1 encoding): the channels a
-// live session advertises, with their ros1msg schemas, and the serialised messages of a tick, so that Foxglove
+// live session advertises, with their ros1msg schemas, and the serialised messages of a tick (recording::TickTopics,
+// the bag's and the live graph's messages), so that Foxglove
 // Studio connected to ws://ADDR:PORT shows the game's TF, zones, footprints and background image, the Nao's links and
 // joints, and the stage cameras.
 
@@ -9,14 +10,11 @@
 #include <string>
 #include <vector>
 
-namespace freeplay::sim {
-class Sandtray;
-}
 namespace freeplay::runner {
-struct RobotSnapshot;
+struct EpisodeSnapshot;
 }
 namespace freeplay::recording {
-struct LinkTransform;
+class TickTopics;
 }
 
 namespace freeplay::web {
@@ -50,21 +48,28 @@ struct FoxgloveMessage {
   int channel = 0;                               ///< channel id
   std::uint64_t stamp_ns = 0;                    ///< receive timestamp (ns, ROS time)
   std::shared_ptr<const std::string> payload;    ///< the ROS 1 serialised message
+  bool latched = false;                          ///< a latched topic (a new subscriber gets the latest at once)
 };
 
-/// `/tf`: sandtray → every item (x, y, yaw) and every active touch (`touchN`), stamped `stamp_ns`.
-FoxgloveMessage foxglove_tf(const sim::Sandtray& tray, std::uint64_t stamp_ns);
-/// `/zones`: the colour zones as LINE_STRIP markers in `sandtray` (as the real zones node).
-FoxgloveMessage foxglove_zones(const sim::Sandtray& tray, std::uint64_t stamp_ns);
-/// `/footprints`: each item's polygon as a LINE_STRIP marker in the item's frame (as map_and_plan).
-FoxgloveMessage foxglove_footprints(const sim::Sandtray& tray, std::uint64_t stamp_ns);
-/// `/sandtray/background/image/compressed`: the background as a JPEG CompressedImage in `sandtray`.
-FoxgloveMessage foxglove_background(const std::string& jpeg, std::uint64_t stamp_ns);
+/// The channel of `topic` among the game's and the Nao's (0: none).
+int foxglove_channel(const std::string& topic);
 
-/// `/tf`: the Nao's links (robot_state_publisher's tree from the joint states), stamped `stamp_ns`.
-FoxgloveMessage foxglove_robot_tf(const std::vector<recording::LinkTransform>& links, std::uint64_t stamp_ns);
-/// `/joint_states`: the Nao's joints.
-FoxgloveMessage foxglove_joint_states(const runner::RobotSnapshot& robot, std::uint64_t stamp_ns);
+/// The game's and the Nao's messages of each tick on their channels: recording::TickTopics with kFoxgloveStreams.
+class FoxgloveTopics {
+ public:
+  /// The topics of the episode with root `seed`; sandtray time 0 is ROS time `origin_ns`; `arm_reach_m` places the Nao.
+  FoxgloveTopics(std::uint64_t seed, std::uint64_t origin_ns, double arm_reach_m);
+  ~FoxgloveTopics();
+  FoxgloveTopics(const FoxgloveTopics&) = delete;
+  FoxgloveTopics& operator=(const FoxgloveTopics&) = delete;
+  /// The tick's messages, in the order they go out (stamp_ns: when each is sent).
+  std::vector<FoxgloveMessage> tick(const runner::EpisodeSnapshot& snapshot);
+
+ private:
+  std::uint64_t origin_ns_;
+  std::unique_ptr<recording::TickTopics> topics_;  // (a pointer: the web server's C++17 unit includes this header)
+};
+
 /// A stage camera's colour frame (JPEG) on channel `channel` in the optical frame `frame_id`.
 FoxgloveMessage foxglove_camera(int channel, const std::string& frame_id, const std::vector<std::uint8_t>& jpeg,
                                 std::uint64_t stamp_ns);
