@@ -251,7 +251,7 @@ void ChildAgent::on_item_taken(double t) {
   motivation_ -= d.unfairness_drop * motivation_;
   grievance_ = std::min(1.0, grievance_ + 0.5);
   if (quit_) return;
-  protest_pending_ = true;
+  // A child protests when the take makes it frustrated (switch_label says so), not at every take.
   if (rng_.bernoulli(r.take_reaction_probability)) {
     const double a = std::exp(feature(Feature::Assertiveness));
     // The reaction to a take is its own mechanism (the fitted entry biases govern the attitude's course otherwise).
@@ -659,8 +659,8 @@ void ChildAgent::update_gaze(double t, const ChildPerception& seen, ChildActions
     return;
   }
   if (labels_.task == TaskEngagement::NoPlay) {
-    // A child out of the game often watches the partner play; otherwise it looks away half the time.
-    if (t - partner_last_t_ < params_->partnership.watch_window_s && rng_.bernoulli(0.5)) {
+    // A child out of the game may watch the partner play; otherwise it looks away half the time.
+    if (t - partner_last_t_ < params_->partnership.watch_window_s && rng_.bernoulli(e.noplay_watch_share)) {
       gaze_.point = partner_last_point_;
       gaze_.item = partner_last_item_;
       gaze_.kind = gaze_.item >= 0 ? GazeKind::Item : GazeKind::Tray;

@@ -133,7 +133,10 @@ void PairCoder::track_words(double t, int who, const ObservedPlayer& self) {
   const Utterance kind = self.speech->kind;
   if (kind == Utterance::Protest || kind == Utterance::AnnounceStop) return;
   // Associative — "talks about it": words to the other while play is going on are about the play.
-  if (plays(t, who, params_.talk_play_window_s) || plays(t, 1 - who, params_.talk_play_window_s)) me.interaction.add(t);
+  const bool about_play = plays(t, who, params_.talk_play_window_s) || plays(t, 1 - who, params_.talk_play_window_s);
+  if (about_play) me.interaction.add(t);
+  // A remark that answers the other's (within the answer window) is a turn of a conversation between the two.
+  if (about_play && t - them.last_talk_t <= params_.answer_window_s) replies_.add(t);
   // Cooperative — "the two children discuss what to do next": a proposal, answered in words by the other, and a
   // further word from either (three turns, each within the answer window of the one before) is a discussion,
   // and both speakers take part in it. A remark that happens to follow a proposal is not yet a discussion.
@@ -296,8 +299,10 @@ SocialEngagement PairCoder::candidate(double t, int who) const {
   // activity, while play goes on. Anything the other does alone never makes me associative.
   const bool taken_up = them.interaction.since(from) >= 1 || them.last_look_at_other_t >= from ||
                         me.follows.since(from) >= 1;
-  // One remark is not yet an interaction: the child keeps it up (two or more within the window).
-  if (my_words >= 2 && taken_up && (i_play || they_play)) return SocialEngagement::Associative;
+  // One remark is not yet an interaction: the child keeps it up (two or more within the window), or takes part in
+  // a conversation about the play (its own remark among two or more answers to each other within the window).
+  const bool conversation = i_talk && replies_.since(from) >= 2;
+  if (((my_words >= 2 && taken_up) || conversation) && (i_play || they_play)) return SocialEngagement::Associative;
   // Parallel — "similar materials or activity near the partner, without interacting": both play on the tray; a
   // partner pausing beside a child that plays is still seen as playing alongside for a while longer. A partner who
   // has stopped to watch me is not playing alongside me.

@@ -175,7 +175,7 @@ double ContingencyDetector::weighted(Share share) const {
   double sum = 0.0;
   double weight = 0.0;
   for (const Rates& r : rates_) {
-    const double w = r.bids + params_->prior_bids;
+    const double w = r.bids + 1e-3;  // the kinds of bid I make; before any, the priors alike
     sum += w * share(r);
     weight += w;
   }
@@ -190,17 +190,28 @@ double ContingencyDetector::base_share() const {
   return weighted([this](const Rates& r) { return base_share(r); });
 }
 
+double ContingencyDetector::shrunk(const Rates& r, double (*measure)(double p1, double p0)) const {
+  const ContingencyParams& p = *params_;
+  // What the priors alone say (a new partner gets the benefit of the doubt) …
+  const double window_s = mean_window(r);
+  const double prior_p0 = 1.0 - std::exp(-p.prior_base_rate_per_min / 60.0 * window_s);
+  const double prior = measure(p.prior_answered_share, prior_p0);
+  if (r.bids <= 0.0 || r.probes <= 0.0) return prior;
+  // … moved towards what the counts say, by as much evidence as the scarcer of the two counts holds.
+  const double observed = measure(r.answered / r.bids, r.probe_hits / r.probes);
+  const double evidence = r.bids * r.probes / (r.bids + r.probes);
+  return (evidence * observed + p.prior_bids * prior) / (evidence + p.prior_bids);
+}
+
 double ContingencyDetector::attributable_share() const {
   return weighted([this](const Rates& r) {
-    const double p1 = answered_share(r);
-    return std::clamp((p1 - base_share(r)) / std::max(p1, 1e-6), 0.0, 1.0);
+    return shrunk(r, [](double p1, double p0) { return p1 > 0.0 ? std::clamp((p1 - p0) / p1, 0.0, 1.0) : 0.0; });
   });
 }
 
 double ContingencyDetector::contingency() const {
   return weighted([this](const Rates& r) {
-    const double p0 = base_share(r);
-    return std::clamp((answered_share(r) - p0) / std::max(1.0 - p0, 1e-6), 0.0, 1.0);
+    return shrunk(r, [](double p1, double p0) { return p0 < 1.0 ? std::clamp((p1 - p0) / (1.0 - p0), 0.0, 1.0) : 0.0; });
   });
 }
 

@@ -82,8 +82,15 @@ std::vector<Fitted> fitted_parameters() {
   FREEPLAY_FITTED(expression.proposal_share[2], Logit, 0.01, 0.99);
   FREEPLAY_FITTED(expression.partner_face_share[3], Logit, 0.01, 0.9);
   FREEPLAY_FITTED(expression.partner_face_share[4], Logit, 0.01, 0.9);
+  FREEPLAY_FITTED(expression.noplay_watch_share, Logit, 0.01, 0.99);
   FREEPLAY_FITTED(reactions.take_reaction_probability, Logit, 0.01, 0.99);
   FREEPLAY_FITTED(motor.action_gap_median_s[1], Log, 0.5, 30.0);
+  // The coder's windows: how long a human coder holds a label on evidence (set on the child-child bouts before too).
+  FREEPLAY_FITTED(coder.cooperation_hold_s, Log, 2.0, 60.0);
+  FREEPLAY_FITTED(coder.interaction_hold_s, Log, 2.0, 60.0);
+  FREEPLAY_FITTED(coder.min_bout_s, Log, 1.0, 30.0);
+  FREEPLAY_FITTED(coder.attitude_min_bout_s, Log, 1.0, 30.0);
+  FREEPLAY_FITTED(coder.watch_share, Logit, 0.05, 0.95);
 #undef FREEPLAY_FITTED
   const auto coupling = [&out](SocialEngagement label, Feature feature, const char* name) {
     const auto j = static_cast<std::size_t>(label);

@@ -143,6 +143,7 @@ std::vector<Field> expression_fields(ExpressionParams& e) {
           {"adult_speech_per_min", &e.adult_speech_per_min, 0, 60},
           {"robot_curiosity_per_min", &e.robot_curiosity_per_min, 0, 60},
           {"robot_novelty_face_share", &e.robot_novelty_face_share, 0, 1},
+          {"noplay_watch_share", &e.noplay_watch_share, 0, 1},
           {"syllables_mean", &e.syllables_mean, 1, 50},
           {"articulation_rate_at_3", &e.articulation_rate_at_3, 0.5, 10},
           {"articulation_rate_per_year", &e.articulation_rate_per_year, 0, 1}};

@@ -143,6 +143,7 @@ class PairCoder {
   double last_t_ = 0.0;
   std::array<Track, 2> tracks_{};
   double proposal_answered_t_ = -1e9;  // when one player last answered the other's proposal in words
+  RecentActs replies_;                 // remarks about the play that answered the other's, by either player
   std::array<GazeTarget, 2> prev_gaze_{};
   std::array<std::array<Coded, kAxisCount>, 2> coded_{};
 };

@@ -111,6 +111,8 @@ class ContingencyDetector {
   void close(const OpenBid& bid);
   double answered_share(const Rates& r) const;
   double mean_window(const Rates& r) const;
+  /// `measure`(p₁, p₀) of one kind of bid: the counts' value shrunk towards the priors' by the evidence held.
+  double shrunk(const Rates& r, double (*measure)(double p1, double p0)) const;
   double base_share(const Rates& r) const;
   /// The bid-weighted mean of `share` over the kinds of bid.
   template <typename Share>

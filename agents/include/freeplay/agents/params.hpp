@@ -99,6 +99,7 @@ struct ExpressionParams {
   double robot_curiosity_per_min = 2.0;             ///< extra utterances to a robot at t = 0 (wears off with novelty)
   double robot_novelty_face_share = 0.3;            ///< extra P(look at a robot partner) at t = 0, wearing off with
                                                     ///< novelty (Kanda et al. 2004; Tanaka et al. 2007)
+  double noplay_watch_share = 0.5;                  ///< P(a child out of the game watches where the partner just played)
   double syllables_mean = 6.0;                      ///< mean syllables per utterance
   double articulation_rate_at_3 = 2.7;              ///< syllables/s at 3 years
   double articulation_rate_per_year = 0.12;         ///< increase per year (3.3 at 8 years)
@@ -135,14 +136,14 @@ struct PartnershipParams {
 struct ContingencyParams {
   double response_window_s = 3.0;       ///< a partner act answers my bid only within this time after it (s)
   double about_distance_m = 0.12;       ///< a partner act on the tray this close to my act is about it (m)
-  double memory_s = 120.0;              ///< forgetting time constant of the bid and base-rate counts (s)
+  double memory_s = 300.0;              ///< forgetting time constant of the bid and base-rate counts (s)
   double prior_bids = 2.0;              ///< weight of the prior answered share, in bids
   double prior_answered_share = 0.5;    ///< prior P(a bid is answered)
   double prior_free_time_s = 20.0;      ///< weight of the prior base rate, in seconds of probe windows
   double prior_base_rate_per_min = 3.0; ///< prior rate of the partner's acts that could answer me (1/min)
   double non_contingent_weight = 0.3;   ///< motivating effect of fresh non-contingent attention, relative to a response
-  double habituation_rate = 0.2;        ///< each non-contingent stimulus multiplies its salience by (1 − rate)
-  double habituation_recovery_s = 180.0;///< salience recovers towards 1 with this time constant (s)
+  double habituation_rate = 0.3;        ///< each non-contingent stimulus multiplies its salience by (1 − rate)
+  double habituation_recovery_s = 600.0;///< salience recovers towards 1 with this time constant (s)
   double interruption_tau_s = 60.0;     ///< time constant of the interruption level (s)
   double interruption_threshold = 4.0;  ///< interruption level tolerated before each further one lowers motivation
   double interruption_drop = 0.05;      ///< motivation fall per interruption above the threshold (× M)
