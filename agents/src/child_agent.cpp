@@ -165,6 +165,10 @@ void ChildAgent::observe_partner_acts(double t, const PartnerView& partner, int 
       on_response(t, r.act_weight);
       on_partner_bid(t, /*joint=*/true, /*spoken=*/false);
       partner_joint_ = std::min(1.0, partner_joint_ + 0.35);
+    } else if (!taken && kind == ActClass::Spontaneous) {
+      // The partner joins my play unasked: its own bid, which I may take up.
+      on_partner_bid(t, /*joint=*/true, /*spoken=*/false);
+      partner_joint_ = std::min(1.0, partner_joint_ + 0.15);
     } else if ((touch.point - my_last_point_).norm() < 2.0 * c.about_distance_m) {
       partner_joint_ = std::min(1.0, partner_joint_ + 0.15);
     }
@@ -520,7 +524,7 @@ void ChildAgent::plan_action(double t, const ChildPerception& seen, ChildActions
   motor_.to = motor_.from;
   ++counters_.taps;
   my_last_point_ = focus;
-  make_bid(t, BidKind::Play, -1, focus, motor_.duration, false);
+  make_bid(t, BidKind::Play, -1, focus, motor_.duration, playing_together());
 }
 
 void ChildAgent::start_drag(double t, const Vec2& from, const Vec2& to, int item) {
@@ -535,10 +539,7 @@ void ChildAgent::start_drag(double t, const Vec2& from, const Vec2& to, int item
   ++counters_.drags;
   my_last_item_ = item;
   my_last_point_ = to;
-  // Every act is something a partner can answer; in joint play it is meant to be answered.
-  const bool together =
-      labels_.social == SocialEngagement::Cooperative || labels_.social == SocialEngagement::Associative;
-  make_bid(t, BidKind::Play, item, to, motor_.duration, together);
+  make_bid(t, BidKind::Play, item, to, motor_.duration, playing_together());
 }
 
 void ChildAgent::start_stroke(double t, const Vec2& centre, bool fill) {
@@ -569,7 +570,7 @@ void ChildAgent::start_stroke(double t, const Vec2& centre, bool fill) {
   ++counters_.strokes;
   my_last_item_ = -1;
   my_last_point_ = c;
-  make_bid(t, BidKind::Play, -1, c, motor_.duration, false);
+  make_bid(t, BidKind::Play, -1, c, motor_.duration, playing_together());
 }
 
 void ChildAgent::run_motor(double t, ChildActions& out) {
@@ -603,7 +604,18 @@ void ChildAgent::run_motor(double t, ChildActions& out) {
   out.push_touch({1, TouchPhase::Move, p});
 }
 
+bool ChildAgent::playing_together() const {
+  return labels_.social == SocialEngagement::Cooperative || labels_.social == SocialEngagement::Associative;
+}
+
 void ChildAgent::make_bid(double t, BidKind kind, int item, const Vec2& point, double duration_s, bool seeking) {
+  // An act on the tray is a bid only in joint play, where it is meant to be answered (Watson: a response is
+  // something the child does to get the partner's reaction); alone or side by side it is my play, which a
+  // partner's act may still be about.
+  if (kind == BidKind::Play && !seeking) {
+    contingency_.on_my_play(item, point);
+    return;
+  }
   contingency_.on_my_bid(t, kind, item, point, duration_s, seeking);
 }
 

@@ -104,6 +104,12 @@ void ContingencyDetector::on_my_bid(double t, BidKind kind, int item, const Vec2
                                                     false, seeking};
 }
 
+void ContingencyDetector::on_my_play(int item, const Vec2& point) {
+  my_item_ = item;
+  my_point_ = point;
+  have_play_ = true;
+}
+
 bool ContingencyDetector::about_my_play(int item, const Vec2& point) const {
   if (!have_play_) return false;
   return (item >= 0 && item == my_item_) || (point - my_point_).norm() < params_->about_distance_m;
@@ -121,10 +127,10 @@ bool ContingencyDetector::could_answer(BidKind bid, PartnerActKind act) {
 
 bool ContingencyDetector::about(const OpenBid& bid, PartnerActKind kind, int item, const Vec2& point) const {
   if (!could_answer(bid.kind, kind)) return false;
-  if (bid.kind == BidKind::Play && (kind == PartnerActKind::LookAtMyPlay || kind == PartnerActKind::TouchMyPlay)) {
-    return (item >= 0 && item == bid.item) || (point - bid.point).norm() < params_->about_distance_m;
-  }
-  return true;
+  if (kind != PartnerActKind::LookAtMyPlay && kind != PartnerActKind::TouchMyPlay) return true;
+  // An act on the tray is about my play act (its item, its spot), or, answering my words, about what I play with.
+  if (bid.kind != BidKind::Play) return about_my_play(item, point);
+  return (item >= 0 && item == bid.item) || (point - bid.point).norm() < params_->about_distance_m;
 }
 
 ActClass ContingencyDetector::on_partner_act(double t, PartnerActKind kind, int item, const Vec2& point) {
@@ -146,8 +152,8 @@ ActClass ContingencyDetector::on_partner_act(double t, PartnerActKind kind, int 
     ++answered_new_;
     return ActClass::Response;
   }
-  if (open_count_ > 0 || (on_play && !about_my_play(item, point))) return ActClass::Unrelated;
-  return ActClass::Spontaneous;
+  if (on_play) return about_my_play(item, point) ? ActClass::Spontaneous : ActClass::Unrelated;
+  return open_count_ > 0 ? ActClass::Unrelated : ActClass::Spontaneous;
 }
 
 double ContingencyDetector::on_interruption() {

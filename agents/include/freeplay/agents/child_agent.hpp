@@ -102,6 +102,7 @@ class ChildAgent {
   void run_motor(double t, ChildActions& out);
   void update_gaze(double t, const ChildPerception& seen, ChildActions& out);
   void update_speech(double t, double dt, ChildActions& out);
+  bool playing_together() const;
   void make_bid(double t, BidKind kind, int item, const Vec2& point, double duration_s, bool seeking);
   void on_partner_bid(double t, bool joint, bool spoken);
   void answer_partner(double t, ChildActions& out);

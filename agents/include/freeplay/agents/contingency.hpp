@@ -36,8 +36,8 @@ enum class PartnerActKind : std::uint8_t {
 /// How the detector classified a partner's act.
 enum class ActClass : std::uint8_t {
   Response,     ///< follows an open bid of mine within the window and is about it: contingent
-  Spontaneous,  ///< came while I had no bid open: counts towards the partner's base rate
-  Unrelated,    ///< came during an open bid but is not about it (or is not about me at all)
+  Spontaneous,  ///< answers no bid of mine: on my play (the partner joining it unasked), or while I had no bid open
+  Unrelated,    ///< came during an open bid but is not about it (or is not about me or my play at all)
 };
 
 /// The running contingency estimate of one child about its partner.
@@ -52,6 +52,8 @@ class ContingencyDetector {
   /// `point` say what a response must be about (−1 and my area for looks and talk); `seeking` when I want an answer
   /// (a look, words, an act while playing together), so that its going unanswered counts (take_unanswered).
   void on_my_bid(double t, BidKind kind, int item, const Vec2& point, double duration_s, bool seeking);
+  /// I act on `item` / at `point` without seeking an answer: what a partner's act on the tray may be about.
+  void on_my_play(int item, const Vec2& point);
   /// The partner did `kind` at `t` on `item` / at `point` (when relevant); returns whether it answered a bid of mine.
   ActClass on_partner_act(double t, PartnerActKind kind, int item, const Vec2& point);
   /// Notes a directed act of the partner (a look at me or words to me) that did not answer me, while I was busy
