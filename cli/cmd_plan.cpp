@@ -35,10 +35,10 @@ struct PlanOptions {
   std::string item;
   std::string to;
   std::string to_px;
-  std::string planner = "astar";
+  std::string planner = planning::PlannerSettings{}.name;
   std::uint64_t layout_seed = 1;
   int items = 10;
-  double time_budget_s = 1.0;
+  double time_budget_s = planning::planner_default(&planning::PlannerSettings::time_budget_s);
   bool execute = false;
   bool json = false;
   bool faithful_endpoints = false;

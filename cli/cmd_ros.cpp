@@ -11,6 +11,7 @@
 
 #include "command_registry.hpp"
 #include "freeplay/core/error.hpp"
+#include "freeplay/planning/planner_settings.hpp"
 #include "serve_web.hpp"
 
 #ifdef FREEPLAY_WITH_ROS
@@ -112,7 +113,7 @@ void serve_command(const ServeCommandOptions& o) {
 
 struct RobotCommandOptions {
   std::string policy = "asocial";
-  std::string planner = "astar";
+  std::string planner = planning::PlannerSettings{}.name;
   std::uint64_t seed = 1;
   double duration_s = 0.0;
   double master_timeout_s = 10.0;

@@ -86,6 +86,13 @@ std::vector<TimedPose> retime_path(const std::vector<TimedPose>& path, double sp
   return out;
 }
 
+MoveExecutorConfig move_executor_config(const PlannerSettings& settings) {
+  MoveExecutorConfig config;
+  config.time_budget_s = settings.time_budget_s;
+  config.finger_speed_mps = settings.finger_speed_mps;
+  return config;
+}
+
 MoveExecutor::MoveExecutor(std::shared_ptr<const MotionPlanner> planner, MoveExecutorConfig config)
     : planner_(std::move(planner)), config_(std::move(config)) {
   if (!planner_) throw InputError("no planner given", "planner", planner_names_joined());

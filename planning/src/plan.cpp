@@ -62,6 +62,17 @@ std::unique_ptr<MotionPlanner> make_planner(std::string_view name, const Planner
   throw InputError(fmt::format("unknown planner '{}'", name), "planner", planner_names_joined());
 }
 
+PlannerOptions planner_options(const PlannerSettings& settings) {
+  PlannerOptions options;
+  // The real A* plans to any point; 101 exceeds every occupancy, so no goal is refused for lying on items.
+  if (!settings.reject_blocked_goals) options.goal_blocked_occupancy = 101;
+  return options;
+}
+
+std::unique_ptr<MotionPlanner> make_planner(const PlannerSettings& settings) {
+  return make_planner(settings.name, planner_options(settings));
+}
+
 void validate_request(const PlanRequest& request) {
   if (!finite(request.start)) {
     throw InputError(fmt::format("start ({}, {}) is not finite", request.start.x(), request.start.y()), "start",

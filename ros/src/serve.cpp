@@ -284,7 +284,8 @@ class GraphRobot final : public runner::RobotActionSource {
       plan.goal = pose.position() + Eigen::Rotation2Dd(pose.theta) * Vec2(request.x, request.y);
       plan.obstacles = world.footprints();
       plan.time_budget_s = scenario_.planner.time_budget_s;
-      const auto result = planning::plan_motion(scenario_.planner.name, plan, rng_);
+      const auto result =
+          planning::plan_motion(scenario_.planner.name, plan, rng_, planning::planner_options(scenario_.planner));
       if (!result.ok) spdlog::warn("plan_motion: no path for {}: {}", item, result.message);
       for (const auto& p : result.path) path.push_back({p.position.x(), p.position.y()});
     } else {

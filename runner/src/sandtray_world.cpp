@@ -35,17 +35,12 @@ planning::MoveWorld sandtray_move_world(const sim::Sandtray& tray) {
 
 std::unique_ptr<planning::MoveExecutor> make_move_executor(const Scenario& scenario, const Vec2& shoulder_xy,
                                                            double disc_radius) {
-  planning::MoveExecutorConfig config;
-  config.time_budget_s = scenario.planner.time_budget_s;
-  config.finger_speed_mps = scenario.planner.finger_speed_mps;
+  planning::MoveExecutorConfig config = planning::move_executor_config(scenario.planner);
   const double reach = scenario.robot.arm_reach_m;
   config.arm_reach = planning::ArmReach{shoulder_xy, reach,
                                         std::sqrt(std::max(0.0, reach * reach - disc_radius * disc_radius))};
-  planning::PlannerOptions options;
-  // The real A* plans to any point; 101 exceeds every occupancy, so no goal is refused for lying on items.
-  if (!scenario.planner.reject_blocked_goals) options.goal_blocked_occupancy = 101;
   return std::make_unique<planning::MoveExecutor>(
-      std::shared_ptr<const planning::MotionPlanner>(planning::make_planner(scenario.planner.name, options)), config);
+      std::shared_ptr<const planning::MotionPlanner>(planning::make_planner(scenario.planner)), config);
 }
 
 }  // namespace freeplay::runner

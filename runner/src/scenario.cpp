@@ -145,7 +145,7 @@ std::shared_ptr<const Schema> build_scenario_schema(const ScenarioVocabulary& vo
       with_default("seed", S::integer(0, std::numeric_limits<long long>::max()), "1"),
       with_default("children", settings_schema<ChildrenSettings>(), "{}"),
       with_default("robot", settings_schema<RobotSettings>(vocabulary), "{}"),
-      with_default("planner", settings_schema<PlannerSettings>(vocabulary), "{}"),
+      with_default("planner", settings_schema<PlannerSettings>(vocabulary.planners), "{}"),
       with_default("perception", settings_schema<PerceptionSettings>(), "{}"),
       with_default("protocol", settings_schema<Protocol>(), "{}"),
       with_default("cameras", S::list(settings_schema<CameraStream>(vocabulary)), "[]"),
@@ -228,7 +228,7 @@ Scenario scenario_from_document(YamlDocument document, const std::vector<std::st
   s.seed = root["seed"].as<std::uint64_t>();
   s.children = read_settings<ChildrenSettings>(root["children"]);
   s.robot = read_settings<RobotSettings>(root["robot"], vocabulary);
-  s.planner = read_settings<PlannerSettings>(root["planner"], vocabulary);
+  s.planner = read_settings<PlannerSettings>(root["planner"], vocabulary.planners);
   s.perception = read_settings<PerceptionSettings>(root["perception"]);
   s.protocol = read_settings<Protocol>(root["protocol"]);
   for (const auto& c : root["cameras"]) s.cameras.push_back(read_settings<CameraStream>(c, vocabulary));

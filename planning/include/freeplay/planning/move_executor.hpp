@@ -136,9 +136,10 @@ enum class StealResponse {
 
 /// Settings of an executor.
 struct MoveExecutorConfig {
-  double time_budget_s = 1.0;             ///< planning budget per move (wall clock, anytime planners use it all)
+  /// Planning budget per move (wall clock, anytime planners use it all).
+  double time_budget_s = planner_default(&PlannerSettings::time_budget_s);
   std::uint64_t iteration_budget = 0;     ///< planning iteration budget (0 = none), for reproducible anytime plans
-  double pose_period_s = 0.1;             ///< time between finger poses (`/poses` at 10 Hz)
+  double pose_period_s = kPosePeriodS;    ///< time between finger poses (`/poses` at 10 Hz)
   /// Finger speed (m/s) of a re-timed path (one pose every speed × period along it); nullopt streams the plan's
   /// own poses (A*: one per 5 mm cell, 5 cm/s straight, 7 cm/s diagonal, as the real system).
   std::optional<double> finger_speed_mps;
@@ -151,6 +152,9 @@ struct MoveExecutorConfig {
   StealResponse on_steal = StealResponse::Stop;  ///< response to a child grabbing the dragged item
   double max_lag_search_s = 2.0;          ///< `SyncMetrics::best_lag_s` is searched in [0, this]
 };
+
+/// The executor settings of a scenario's planner settings: its time budget, and its finger speed for re-timing.
+MoveExecutorConfig move_executor_config(const PlannerSettings& settings);
 
 /// Counts over every move of an executor (an episode's "items a child took from the robot" and so on).
 struct MoveTally {

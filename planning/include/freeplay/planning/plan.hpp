@@ -10,8 +10,12 @@
 
 #include "freeplay/core/geometry.hpp"
 #include "freeplay/core/rng.hpp"
+#include "freeplay/planning/planner_settings.hpp"
 
 namespace freeplay::planning {
+
+/// Time between finger poses: the `/poses` topic at 10 Hz.
+inline constexpr double kPosePeriodS = 0.1;
 
 /// Another item on the tray: its name (TF frame) and its footprint polygon in the `sandtray` frame.
 struct Obstacle {
@@ -26,7 +30,8 @@ struct PlanRequest {
   Vec2 goal = Vec2::Zero();               ///< target of the item centre
   std::vector<Obstacle> obstacles;        ///< footprints of the items on the tray (the moved one may be included)
   std::optional<Polygon2> moved_footprint;///< moved item's footprint at `start` (only used for the clearance metric)
-  double time_budget_s = 1.0;             ///< wall-clock budget; anytime planners use all of it
+  /// Wall-clock budget; anytime planners use all of it.
+  double time_budget_s = planner_default(&PlannerSettings::time_budget_s);
   std::uint64_t iteration_budget = 0;     ///< anytime planners / PRM*: stop after this many iterations (0 = none)
 };
 
@@ -77,8 +82,9 @@ enum class AStarHeuristic {
 struct PlannerOptions {
   int blocked_occupancy = 50;       ///< sampling planners: a cell is an obstacle when its occupancy is >= this
   int goal_blocked_occupancy = 99;  ///< every planner: goal rejected when its cell's occupancy is >= this
-  double finger_speed_mps = 0.05;   ///< sampling planners: finger speed of the re-timed path (5 mm per 0.1 s)
-  double pose_period_s = 0.1;       ///< time between finger poses (`/poses` at 10 Hz)
+  /// Sampling planners: finger speed of the re-timed path (5 mm per 0.1 s).
+  double finger_speed_mps = planner_default(&PlannerSettings::finger_speed_mps);
+  double pose_period_s = kPosePeriodS;  ///< time between finger poses (`/poses` at 10 Hz)
   bool simplify = true;             ///< sampling planners: shorten the path with OMPL's PathSimplifier
   int outside_margin_cells = 20;    ///< A*: how far (cells) a path may leave the map
   AStarHeuristic heuristic = AStarHeuristic::Manhattan;  ///< A* heuristic
@@ -100,6 +106,11 @@ std::vector<std::string> planner_names();
 std::string planner_names_joined();
 /// The planner registered under `name`; throws InputError listing the allowed names when unknown.
 std::unique_ptr<MotionPlanner> make_planner(std::string_view name, const PlannerOptions& options = {});
+/// The options a scenario's planner settings ask for: `reject_blocked_goals` off lets every goal through (the real
+/// planner plans to any point); the finger speed is the executor's re-timing (`move_executor_config`), not this.
+PlannerOptions planner_options(const PlannerSettings& settings);
+/// The planner named by `settings`, with `planner_options(settings)`; throws InputError for an unknown name.
+std::unique_ptr<MotionPlanner> make_planner(const PlannerSettings& settings);
 /// Checks a request (finite coordinates, positive budget, polygons of >= 3 finite vertices); throws InputError.
 void validate_request(const PlanRequest& request);
 /// Runs `planner` and turns an InputError into a failed result with reason InvalidRequest.

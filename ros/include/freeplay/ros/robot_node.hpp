@@ -10,14 +10,17 @@
 #include <optional>
 #include <string>
 
+#include "freeplay/planning/planner_settings.hpp"
+
 namespace freeplay::ros_live {
 
 /// Settings of the robot node.
 struct RobotNodeOptions {
   std::string policy = "asocial";       ///< registered policy name
   YAML::Node policy_params;             ///< its parameters
-  std::string planner = "astar";        ///< motion planner
-  double planner_budget_s = 1.0;        ///< planning budget per move (s)
+  std::string planner = planning::PlannerSettings{}.name;  ///< motion planner
+  /// Planning budget per move (s).
+  double planner_budget_s = planning::planner_default(&planning::PlannerSettings::time_budget_s);
   std::uint64_t seed = 1;               ///< the policy's and planner's random streams
   double duration_s = 0.0;              ///< stop after this many seconds (0: until stopped)
   std::string node_name = "freeplay_robot";  ///< ros::init name

@@ -2,13 +2,15 @@
 // The typed settings of each subsystem a scenario configures (children, robot, planner, perception, protocol,
 // cameras, rendering, recording, controller): one struct each, whose member initialisers are the defaults and whose
 // `visit` lists the keys, ranges and help once; the scenario parser composes their schemas and readers
-// (core/settings_archive.hpp).
+// (core/settings_archive.hpp). The planner's settings are declared by the planning library
+// (planning/planner_settings.hpp); the others still live here.
 
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "freeplay/core/settings_archive.hpp"
+#include "freeplay/planning/planner_settings.hpp"
 
 namespace freeplay::runner {
 
@@ -81,26 +83,8 @@ struct RobotSettings {
   }
 };
 
-/// `planner:` the motion planner of the robot's item moves.
-struct PlannerSettings {
-  std::string name = "astar";          ///< motion planner
-  double time_budget_s = 1.0;          ///< wall-clock planning budget (only anytime planners use it up)
-  double finger_speed_mps = 0.05;      ///< robot finger speed (5 mm per 0.1 s)
-  bool reject_blocked_goals = false;   ///< refuse goals inside other footprints (the real planner does not)
-
-  /// The keys of `planner:` (planners named by `vocabulary`).
-  template <typename Archive>
-  void visit(Archive& a, const ScenarioVocabulary& vocabulary) {
-    a.field("name", name, Schema::enumeration(vocabulary.planners));
-    a.field("time_budget_s", time_budget_s, Schema::number(0.001, 60.0),
-            "wall-clock budget; only anytime planners (rrtstar, bitstar) use it up: keep it large so that "
-            "deterministic planners never hit it on a slow machine");
-    a.field("finger_speed_mps", finger_speed_mps, Schema::number(0.005, 1.0), "5 mm per 0.1 s in the real system");
-    a.field("reject_blocked_goals", reject_blocked_goals, Schema::boolean(),
-            "refuse a goal whose cell lies inside other items' footprints; the real planner plans to any point (the "
-            "item then lands on the others and the physics pushes them apart)");
-  }
-};
+/// `planner:` the motion planner of the robot's item moves (declared by the planning library).
+using PlannerSettings = planning::PlannerSettings;
 
 /// `perception:` noise, latency and dropout of the robot's perception pipeline.
 struct PerceptionSettings {

@@ -1,0 +1,42 @@
+#pragma once
+// The planner's user-facing settings (a scenario's `planner:` block), declared once by the library that uses them:
+// the member initialisers are the defaults every front starts from (`PlanRequest`, `PlannerOptions`,
+// `MoveExecutorConfig`, the command-line flags) and `visit` lists the keys, ranges and help
+// (core/settings_archive.hpp).
+
+#include <string>
+#include <vector>
+
+#include "freeplay/core/settings_archive.hpp"
+
+namespace freeplay::planning {
+
+/// `planner:` the motion planner of the robot's item moves.
+struct PlannerSettings {
+  std::string name = "astar";          ///< motion planner
+  double time_budget_s = 1.0;          ///< wall-clock planning budget (only anytime planners use it up)
+  double finger_speed_mps = 0.05;      ///< robot finger speed (5 mm per 0.1 s)
+  bool reject_blocked_goals = false;   ///< refuse goals inside other footprints (the real planner does not)
+
+  /// The keys of `planner:` (`planner_names`: the names `name` accepts).
+  template <typename Archive>
+  void visit(Archive& a, const std::vector<std::string>& planner_names) {
+    a.field("name", name, Schema::enumeration(planner_names));
+    a.field("time_budget_s", time_budget_s, Schema::number(0.001, 60.0),
+            "wall-clock budget; only anytime planners (rrtstar, bitstar) use it up: keep it large so that "
+            "deterministic planners never hit it on a slow machine");
+    a.field("finger_speed_mps", finger_speed_mps, Schema::number(0.005, 1.0), "5 mm per 0.1 s in the real system");
+    a.field("reject_blocked_goals", reject_blocked_goals, Schema::boolean(),
+            "refuse a goal whose cell lies inside other items' footprints; the real planner plans to any point (the "
+            "item then lands on the others and the physics pushes them apart)");
+  }
+};
+
+/// One default of the planner settings, read at compile time (`planner_default(&PlannerSettings::time_budget_s)`),
+/// for the structs whose defaults follow the planner's (a constant, so their constructors stay trivial).
+template <typename T>
+consteval T planner_default(T PlannerSettings::*member) {
+  return PlannerSettings{}.*member;
+}
+
+}  // namespace freeplay::planning
