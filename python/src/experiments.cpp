@@ -38,10 +38,10 @@ py::dict suite_data(const runner::Suite& suite, bool is_suite) {
     py::dict d;
     d["id"] = v.id;
     d["name"] = v.scenario.name;
-    d["condition"] = v.scenario.condition;
+    d["condition"] = std::string(runner::to_string(v.scenario.condition));
     d["episodes"] = v.scenario.episodes;
     d["seed"] = v.scenario.seed;
-    d["policy"] = v.scenario.condition == "child-robot" ? py::object(py::str(v.scenario.robot.policy)) : py::none();
+    d["policy"] = v.scenario.condition == runner::Condition::child_robot ? py::object(py::str(v.scenario.robot.policy)) : py::none();
     d["config_hash"] = v.scenario.config_hash;
     d["scenario"] = yaml_to_python(v.scenario.source);
     variants.append(d);

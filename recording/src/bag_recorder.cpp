@@ -71,10 +71,6 @@ EncodedImages encode_images(const cv::Mat& rgb, const cv::Mat& depth_m, const ru
   return out;
 }
 
-std::string pinsoro_condition(const std::string& condition) {
-  return condition == "child-robot" ? "childrobot" : "childchild";
-}
-
 }  // namespace
 
 struct BagRecorder::Impl {
@@ -82,7 +78,7 @@ struct BagRecorder::Impl {
   runner::RecordSettings settings;
   SessionPaths paths;
   std::string id;
-  std::string condition;
+  runner::Condition condition = runner::Condition::child_child;
   std::uint64_t seed = 0;
   std::string scenario_name;
   std::string gl_renderer;
@@ -179,8 +175,8 @@ struct BagRecorder::Impl {
                               utc.tm_year + 1900, utc.tm_mon + 1, utc.tm_mday, utc.tm_hour, utc.tm_min, utc.tm_sec,
                               scenario_name, id, seed);
     info.timestamp_ns = ros_time(freeplay_start.value_or(0.0)).toNSec();
-    info.condition = pinsoro_condition(condition);
-    const std::string suffix = condition == "child-robot" ? "2" : "1";
+    info.condition = runner::pinsoro_name(condition);
+    const std::string suffix = condition == runner::Condition::child_robot ? "2" : "1";
     for (const auto& p : participants) {
       Participant out = p;
       if (children != nullptr && children->contains(p.id)) {
@@ -208,7 +204,7 @@ struct BagRecorder::Impl {
   void write_csv(const nlohmann::json& children, const agents::SessionAnnotations& annotations) const {
     PinsoroSessionInfo table;
     table.id = id;
-    table.condition = pinsoro_condition(condition);
+    table.condition = runner::pinsoro_name(condition);
     table.annotators = "freeplay-sim";
     const auto info = experiment(&children, true);
     if (info.purple) std::tie(table.purple_age, table.purple_gender) = std::pair(info.purple->age, info.purple->gender);
@@ -328,7 +324,7 @@ void BagRecorder::begin(const runner::EpisodeInfo& info) {
   d.clocks = PublisherClocks(info.seed);
   TickTopicsOptions topics_options;
   topics_options.png_level = d.settings.png_level;
-  const bool child_robot = info.scenario != nullptr && info.scenario->condition == "child-robot";
+  const bool child_robot = info.scenario != nullptr && info.scenario->condition == runner::Condition::child_robot;
   topics_options.streams = child_robot ? kBagStreams : kBagStreams & ~unsigned{kRobotLinks};
   if (child_robot) topics_options.arm_reach_m = info.scenario->robot.arm_reach_m;
   d.tick_topics = std::make_unique<TickTopics>(info.seed, topics_options);

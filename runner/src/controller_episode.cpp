@@ -171,7 +171,7 @@ class ControllerEpisode {
   ControllerEpisode(const Scenario& scenario, std::uint64_t seed, const SharedModels& models)
       : scenario_(scenario), spec_(scenario.controller), seeds_(seed),
         stage_model_(make_stage_model(scenario)),
-        stage_(stage_model_, spec_.mode == "dynamic" ? stage::StageMode::dynamic : stage::StageMode::kinematic),
+        stage_(stage_model_, spec_.mode),
         nao_(stage_), tray_(models.catalogue, sim::SandtrayConfig{}, seeds_.stream("sandtray")),
         collisions_(stage_model_->mj(), stage_model_->nao()) {
     dynamic_ = stage_.mode() == stage::StageMode::dynamic;
@@ -578,10 +578,10 @@ class ControllerEpisode {
     metrics["placement_error_mm"] = freeplay::mean(placement_errors_mm_);
     metrics["trace_hash"] = fmt::format("{:016x}", trace_.hash());
     auto record = provenance_fields(log_);
-    record.update({{"kind", "controller"},
+    record.update({{"kind", std::string(to_string(ScenarioKind::controller))},
                    {"duration_s", time()},
                    {"ended_by", "sequence"},
-                   {"robot_mode", spec_.mode},
+                   {"robot_mode", std::string(stage::to_string(spec_.mode))},
                    {"planner", scenario_.planner.name},
                    {"controller", {{"speed_fraction", spec_.speed_fraction},
                                    {"torque_fraction", spec_.torque_fraction},
@@ -690,8 +690,9 @@ std::string trace_machine_kind() {
 
 ControllerEpisodeResult run_controller_episode(const Scenario& scenario, std::uint64_t seed,
                                                const SharedModels& models, const std::atomic<bool>& stop) {
-  if (scenario.kind != "controller") {
-    throw InputError(fmt::format("scenario '{}' is of kind '{}'", scenario.name, scenario.kind), "kind", "controller");
+  if (scenario.kind != ScenarioKind::controller) {
+    throw InputError(fmt::format("scenario '{}' is of kind '{}'", scenario.name, to_string(scenario.kind)), "kind",
+                     std::string(to_string(ScenarioKind::controller)));
   }
   ControllerEpisode episode(scenario, seed, models);
   return episode.run(stop);

@@ -243,7 +243,7 @@ EpisodeResult run_episode(const Scenario& scenario, std::uint64_t seed, const Sh
 EpisodeFunction episode_function(const SharedModels& models, ObserverFactory observers, std::filesystem::path run_dir) {
   return [&models, observers = std::move(observers), run_dir = std::move(run_dir)](const EpisodeTask& task,
                                                                                    const std::atomic<bool>& stop) {
-    if (task.variant->scenario.kind == "controller") return run_controller_task(task, models, stop);
+    if (task.variant->scenario.kind == ScenarioKind::controller) return run_controller_task(task, models, stop);
     const auto id = RunFolder::episode_file_id(task.variant->id, task.index);
     EpisodeObservers attached = observers ? observers(task.variant->scenario, run_dir) : EpisodeObservers{};
     const EpisodeInfo info{&task.variant->scenario, id, task.seed, task.index};

@@ -1,6 +1,7 @@
 #include "freeplay/runner/scenario.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <array>
 #include <limits>
@@ -55,10 +56,13 @@ std::shared_ptr<const Schema> controller_schema(const ScenarioVocabulary& vocabu
   return S::map(std::move(fields));
 }
 
-void check_kind_sections(const YAML::Node& root, const std::string& kind,
+// The conditions a scenario of kind episode may name.
+constexpr std::initializer_list<Condition> kEpisodeConditions = {Condition::child_child, Condition::child_robot};
+
+void check_kind_sections(const YAML::Node& root, ScenarioKind kind,
                          const std::vector<std::string>& episode_only_keys, const std::string& file,
                          ValidationErrors& errors) {
-  if (kind == "controller") {
+  if (kind == ScenarioKind::controller) {
     if (!root["controller"].IsDefined()) {
       errors.add(InputError("a scenario of kind controller needs a 'controller' section", "controller",
                             "controller: {targets: [...]}", location_of(root, file)));
@@ -68,7 +72,8 @@ void check_kind_sections(const YAML::Node& root, const std::string& kind,
                                         "alone (robot mode and gains go in 'controller')", key),
                             key, "remove it, or use kind: episode", location_of(root[key], file)));
     }
-    if (root["condition"].IsDefined() && root["condition"].IsScalar() && root["condition"].Scalar() != "child-robot") {
+    const YAML::Node condition = root["condition"];
+    if (condition.IsDefined() && condition.IsScalar() && condition.Scalar() != to_string(Condition::child_robot)) {
       errors.add(InputError("controller scenarios run the child-robot stage", "condition",
                             "child-robot, or leave it out", location_of(root["condition"], file)));
     }
@@ -89,7 +94,8 @@ void check_kind_sections(const YAML::Node& root, const std::string& kind,
                           "kind: controller, or remove the section", location_of(root["controller"], file)));
   }
   if (!root["condition"].IsDefined()) {
-    errors.add(InputError("missing required key 'condition'", "condition", "child-child, child-robot",
+    errors.add(InputError("missing required key 'condition'", "condition",
+                          fmt::format("{}", fmt::join(enum_names(kEpisodeConditions), ", ")),
                           location_of(root, file)));
   }
 }
@@ -137,10 +143,11 @@ std::shared_ptr<const Schema> build_scenario_schema(const ScenarioVocabulary& vo
   return S::map({
       required("name", S::string(), "short identifier"),
       with_default("description", S::string(), "\"\""),
-      with_default("kind", S::enumeration({"episode", "controller"}), "episode",
+      with_default("kind", S::enumeration(enum_names({ScenarioKind::episode, ScenarioKind::controller})),
+                   std::string(to_string(ScenarioKind::episode)),
                    "episode: a session with children; controller: the Nao alone through a target sequence"),
       optional("controller", controller_schema(vocabulary), "the target sequence (kind: controller only)"),
-      optional("condition", S::enumeration({"child-child", "child-robot"}), "required for kind: episode"),
+      optional("condition", S::enumeration(enum_names(kEpisodeConditions)), "required for kind: episode"),
       with_default("episodes", S::integer(1, 1000000), "1"),
       with_default("seed", S::integer(0, std::numeric_limits<long long>::max()), "1"),
       with_default("children", settings_schema<ChildrenSettings>(), "{}"),
@@ -161,6 +168,29 @@ std::shared_ptr<const Schema> build_scenario_schema(const ScenarioVocabulary& vo
 }
 
 }  // namespace
+
+std::string_view to_string(ScenarioKind kind) { return kind == ScenarioKind::controller ? "controller" : "episode"; }
+
+bool from_string(std::string_view text, ScenarioKind& kind) {
+  return enum_from_string(text, {ScenarioKind::episode, ScenarioKind::controller}, kind);
+}
+
+std::string_view to_string(Condition condition) {
+  switch (condition) {
+    case Condition::child_child: return "child-child";
+    case Condition::child_robot: return "child-robot";
+    case Condition::controller: return "controller";
+  }
+  return "unknown";
+}
+
+bool from_string(std::string_view text, Condition& condition) {
+  return enum_from_string(text, {Condition::child_child, Condition::child_robot, Condition::controller}, condition);
+}
+
+std::string_view pinsoro_name(Condition condition) {
+  return condition == Condition::child_robot ? "childrobot" : "childchild";
+}
 
 std::shared_ptr<const Schema> scenario_schema(const ScenarioVocabulary& vocabulary) {
   // Schemas are immutable: each thread keeps the last one built (a suite validates many scenarios with one
@@ -186,11 +216,14 @@ Scenario scenario_from_document(YamlDocument document, const std::vector<std::st
     }
   }
   scenario_schema(vocabulary)->validate(root, "", document.file, errors);
-  const std::string kind = root.IsMap() && root["kind"].IsScalar() ? root["kind"].Scalar() : "episode";
+  ScenarioKind kind = ScenarioKind::episode;  // an unknown name is already an error; check the rest as an episode
+  if (root.IsMap() && root["kind"].IsScalar()) from_string(root["kind"].Scalar(), kind);
   if (root.IsMap()) check_kind_sections(root, kind, episode_only_keys, document.file, errors);
-  std::string condition = root.IsMap() && root["condition"].IsScalar() ? root["condition"].Scalar() : "";
-  if (kind == "controller") condition = "controller";  // the Nao alone on the child-robot stage
-  if (errors.empty() && condition == "child-robot" && root["children"]["yellow"].IsDefined()) {
+  // Without errors an episode names a valid condition (checked above); a controller's is always `controller`.
+  Condition condition = Condition::child_child;
+  if (root.IsMap() && root["condition"].IsScalar()) from_string(root["condition"].Scalar(), condition);
+  if (kind == ScenarioKind::controller) condition = Condition::controller;  // the Nao alone on the child-robot stage
+  if (errors.empty() && condition == Condition::child_robot && root["children"]["yellow"].IsDefined()) {
     errors.add(InputError("the robot takes the yellow place in child-robot scenarios", "children.yellow",
                           "remove children.yellow, or use condition: child-child",
                           location_of(root["children"]["yellow"], document.file)));
@@ -204,7 +237,7 @@ Scenario scenario_from_document(YamlDocument document, const std::vector<std::st
       }
     }
   }
-  if (errors.empty() && condition == "child-child") {
+  if (errors.empty() && condition == Condition::child_child) {
     for (std::size_t i = 0; i < root["cameras"].size(); ++i) {
       const YAML::Node name = root["cameras"][i]["name"];
       if (name.Scalar() == "CameraTop" || name.Scalar() == "CameraBottom") {
@@ -222,7 +255,7 @@ Scenario scenario_from_document(YamlDocument document, const std::vector<std::st
   s.name = root["name"].as<std::string>();
   s.description = root["description"].as<std::string>();
   s.kind = kind;
-  if (kind == "controller") s.controller = controller_from(root["controller"]);
+  if (kind == ScenarioKind::controller) s.controller = controller_from(root["controller"]);
   s.condition = condition;
   s.episodes = root["episodes"].as<int>();
   s.seed = root["seed"].as<std::uint64_t>();

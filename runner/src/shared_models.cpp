@@ -85,15 +85,13 @@ SharedModels SharedModels::load_default() {
   stage::StageConfig config;
   config.scene = stage::SceneKind::child_robot;
   auto kinematic_model = stage::StageModel::create(config);
-  m.robot_body = [kinematic_model](const std::string& mode, double arm_reach) -> std::unique_ptr<RobotBody> {
+  m.robot_body = [kinematic_model](stage::StageMode mode, double arm_reach) -> std::unique_ptr<RobotBody> {
     if (std::abs(arm_reach - kinematic_model->config().arm_reach) > 1e-12) {
       stage::StageConfig custom = kinematic_model->config();
       custom.arm_reach = arm_reach;
-      return std::make_unique<StageRobotBody>(stage::StageModel::create(custom),
-                                              mode == "dynamic" ? stage::StageMode::dynamic : stage::StageMode::kinematic);
+      return std::make_unique<StageRobotBody>(stage::StageModel::create(custom), mode);
     }
-    return std::make_unique<StageRobotBody>(kinematic_model, mode == "dynamic" ? stage::StageMode::dynamic
-                                                                              : stage::StageMode::kinematic);
+    return std::make_unique<StageRobotBody>(kinematic_model, mode);
   };
   return m;
 }

@@ -51,7 +51,7 @@ nlohmann::json SimWorld::record(double duration, const std::string& ended_by,
   out.update({{"duration_s", duration},
               {"ended_by", ended_by},
               {"children", children},
-              {"robot_mode", child_robot_ ? scenario_.robot.mode : ""},
+              {"robot_mode", child_robot_ ? std::string(stage::to_string(scenario_.robot.mode)) : ""},
               {"planner", child_robot_ ? scenario_.planner.name : ""},
               {"metrics", metrics}});
   return out;

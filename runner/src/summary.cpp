@@ -7,14 +7,17 @@
 #include <future>
 
 #include "freeplay/core/task_pool.hpp"
+#include "freeplay/runner/scenario.hpp"
 
 namespace freeplay::runner {
 
 const PinsoroDurations* pinsoro_durations(const std::string& condition) {
   static const PinsoroDurations child_child{45, 24.15, 11.25, 22.4, 0.89, 0.56, 0.38};
   static const PinsoroDurations child_robot{30, 19.18, 10.0, 17.4, 0.73, 0.37, 0.13};
-  if (condition == "child-child") return &child_child;
-  if (condition == "child-robot") return &child_robot;
+  Condition parsed = Condition::controller;
+  if (!from_string(condition, parsed)) return nullptr;
+  if (parsed == Condition::child_child) return &child_child;
+  if (parsed == Condition::child_robot) return &child_robot;
   return nullptr;
 }
 
@@ -175,7 +178,8 @@ std::string summary_markdown(const std::vector<VariantSummary>& summaries, const
   for (const auto& s : summaries) {
     const auto& stats = s.duration_min;
     const auto* ref = pinsoro_durations(s.condition);
-    const bool asocial_reference = ref != nullptr && (s.condition == "child-child" || s.policy == "asocial");
+    const bool asocial_reference =
+        ref != nullptr && (s.condition == to_string(Condition::child_child) || s.policy == "asocial");
     out += fmt::format("| {} | {} | {} | {} | {:.2f} [{:.2f}, {:.2f}] | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {} | {} |\n",
                        s.variant, s.condition, s.policy.empty() ? "–" : s.policy, stats.n, stats.mean,
                        stats.ci95.low, stats.ci95.high, stats.sd, stats.median, s.still_playing[0], s.still_playing[1],

@@ -27,12 +27,14 @@ struct Example {
   }
 };
 
-Example validated(const std::string& text) {
+/// `text` validated against the schema of `Settings` (under the key `path`) and read.
+template <typename Settings = Example>
+Settings validated(const std::string& text, const std::string& path = "example") {
   YAML::Node node = YAML::Load(text);
   ValidationErrors errors;
-  settings_schema<Example>()->validate(node, "example", "test.yaml", errors);
+  settings_schema<Settings>()->validate(node, path, "test.yaml", errors);
   errors.throw_if_any();
-  return read_settings<Example>(node);
+  return read_settings<Settings>(node);
 }
 
 }  // namespace
@@ -123,4 +125,42 @@ TEST(YamlSchema, AnAllowedNameEndingInAStarAcceptsItsPrefix) {
   EXPECT_FALSE(check("python"));
   EXPECT_FALSE(check("pyth"));
   EXPECT_FALSE(check("idle2"));
+}
+
+namespace {
+
+/// An enum as a library declares one for a settings key: its names next to it, found by argument-dependent lookup.
+enum class Shade { light, dark };
+constexpr std::string_view to_string(Shade shade) { return shade == Shade::dark ? "dark" : "light"; }
+constexpr bool from_string(std::string_view text, Shade& shade) {
+  return enum_from_string(text, {Shade::light, Shade::dark}, shade);
+}
+
+/// A settings struct with an enum member.
+struct Shaded {
+  Shade shade = Shade::dark;
+
+  template <typename Archive>
+  void visit(Archive& a) {
+    a.field("shade", shade, Schema::enumeration(enum_names({Shade::light, Shade::dark})));
+  }
+};
+
+}  // namespace
+
+TEST(SettingsArchive, EnumMembersAreReadAndWrittenByTheirNames) {
+  EXPECT_EQ(default_yaml_text(Shade::dark), "dark");
+  EXPECT_EQ(enum_names({Shade::dark, Shade::light}), (std::vector<std::string>{"dark", "light"}));
+  EXPECT_EQ(validated<Shaded>("{}", "shaded").shade, Shade::dark);
+  EXPECT_EQ(validated<Shaded>("{shade: light}", "shaded").shade, Shade::light);
+  Shade unchanged = Shade::light;
+  EXPECT_FALSE(from_string("grey", unchanged));
+  EXPECT_EQ(unchanged, Shade::light);
+  try {
+    validated<Shaded>("{shade: grey}", "shaded");
+    FAIL() << "no error";
+  } catch (const InputError& error) {
+    EXPECT_EQ(std::string(error.what()),
+              "test.yaml:1:9: 'shaded.shade': unknown value 'grey' (allowed: one of light, dark)");
+  }
 }

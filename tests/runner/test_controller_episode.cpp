@@ -204,9 +204,9 @@ TEST(ControllerScenario, ParsesTheSequence) {
   const auto s = controller_scenario(
       "    - point: [0.2, -0.05]\n    - look: [0.3, -0.2, 0.1]\n    - move: {item: ball, to: [0.2, -0.1]}\n"
       "    - posture: Stand\n    - wait: 1.5\n    - random_points: {count: 4}\n");
-  EXPECT_EQ(s.kind, "controller");
-  EXPECT_EQ(s.condition, "controller");
-  EXPECT_EQ(s.controller.mode, "dynamic");
+  EXPECT_EQ(s.kind, ScenarioKind::controller);
+  EXPECT_EQ(s.condition, Condition::controller);
+  EXPECT_EQ(s.controller.mode, stage::StageMode::dynamic);
   EXPECT_DOUBLE_EQ(s.controller.speed_fraction, 0.3);
   EXPECT_EQ(s.controller.trace_interval_steps, 50);
   ASSERT_EQ(s.controller.targets.size(), 6u);
@@ -218,7 +218,7 @@ TEST(ControllerScenario, ParsesTheSequence) {
   EXPECT_EQ(s.controller.targets[5].region, "reach");
   // Episodes are unchanged: kind defaults to episode.
   const auto episode = scenario_from_document(parse_yaml("name: e\ncondition: child-child\n", "e.yaml"));
-  EXPECT_EQ(episode.kind, "episode");
+  EXPECT_EQ(episode.kind, ScenarioKind::episode);
 }
 
 TEST(ControllerScenario, ErrorsNameTheLocationKeyAndAllowedValues) {

@@ -93,3 +93,38 @@ TEST(Scenario, ConfigHashDependsOnContent) {
   EXPECT_NE(a.config_hash, b.config_hash);
   EXPECT_EQ(a.config_hash, parse("name: cc\ncondition: child-child\n").config_hash);
 }
+
+TEST(Scenario, KindConditionAndModeAreReadOnceIntoTheirEnums) {
+  const auto s = parse("name: cr\ncondition: child-robot\nrobot: {mode: dynamic}\n");
+  EXPECT_EQ(s.kind, ScenarioKind::episode);
+  EXPECT_EQ(s.condition, Condition::child_robot);
+  EXPECT_EQ(s.robot.mode, stage::StageMode::dynamic);
+  EXPECT_EQ(parse("name: cc\ncondition: child-child\n").robot.mode, stage::StageMode::kinematic);
+  const std::string missing = error_of("name: x\n");
+  EXPECT_NE(missing.find("missing required key 'condition' (allowed: child-child, child-robot)"), std::string::npos)
+      << missing;
+}
+
+TEST(Scenario, EnumNamesRoundTrip) {
+  for (const auto condition : {Condition::child_child, Condition::child_robot, Condition::controller}) {
+    Condition read = Condition::child_child;
+    ASSERT_TRUE(from_string(to_string(condition), read));
+    EXPECT_EQ(read, condition);
+  }
+  EXPECT_EQ(to_string(Condition::child_robot), "child-robot");
+  EXPECT_EQ(pinsoro_name(Condition::child_robot), "childrobot");
+  EXPECT_EQ(pinsoro_name(Condition::child_child), "childchild");
+  for (const auto kind : {ScenarioKind::episode, ScenarioKind::controller}) {
+    ScenarioKind read = ScenarioKind::episode;
+    ASSERT_TRUE(from_string(to_string(kind), read));
+    EXPECT_EQ(read, kind);
+  }
+  for (const auto mode : {stage::StageMode::kinematic, stage::StageMode::dynamic}) {
+    stage::StageMode read = stage::StageMode::kinematic;
+    ASSERT_TRUE(from_string(to_string(mode), read));
+    EXPECT_EQ(read, mode);
+  }
+  Condition unchanged = Condition::child_robot;
+  EXPECT_FALSE(from_string("robot-robot", unchanged));
+  EXPECT_EQ(unchanged, Condition::child_robot);
+}

@@ -10,7 +10,7 @@
 
 namespace freeplay::web {
 
-ExperimentManager::ExperimentManager(std::filesystem::path path, const std::string& condition,
+ExperimentManager::ExperimentManager(std::filesystem::path path, runner::Condition condition,
                                      std::int64_t created_unix_s, SessionLog& log)
     : path_(std::move(path)), log_(log) {
   const std::time_t created = created_unix_s;
@@ -18,7 +18,7 @@ ExperimentManager::ExperimentManager(std::filesystem::path path, const std::stri
   gmtime_r(&created, &utc);
   id_prefix_ = fmt::format("{:%Y-%m-%d-%H:%M}", utc);  // the supervisor's participant ids: YYYY-MM-DD-HH:MM-p1
   info_.header = fmt::format("{:%Y-%m-%d %H:%M:%S} UTC (freeplay serve --web)", utc);
-  info_.condition = condition == "child-robot" ? "childrobot" : "childchild";
+  info_.condition = runner::pinsoro_name(condition);
 }
 
 void ExperimentManager::freeplay_started(std::uint64_t unix_ns) {

@@ -38,14 +38,14 @@ nlohmann::json scene_json(const sim::ItemCatalogue& catalogue, const runner::Sce
                      {"polygon", polygon(item.polygon)},
                      {"colour", {item.colour[0], item.colour[1], item.colour[2]}}});
   }
-  const bool robot = scenario.condition == "child-robot";
+  const bool robot = scenario.condition == runner::Condition::child_robot;
   return {{"type", "scene"},
           {"screen", {{"width_m", sim::kScreenWidthM}, {"height_m", sim::kScreenHeightM},
                       {"width_px", sim::kScreenWidthPx}, {"height_px", sim::kScreenHeightPx},
                       {"stash_min_x", sim::kStashMinX}, {"frame", "sandtray"}}},
           {"items", items},
           {"scenario", scenario.name},
-          {"condition", scenario.condition},
+          {"condition", std::string(runner::to_string(scenario.condition))},
           {"seats", robot ? nlohmann::json{"purple"} : nlohmann::json{"purple", "yellow"}},
           {"robot", robot},
           {"protocol", {{"greeting_s", scenario.protocol.greeting_s}, {"tutorial_s", scenario.protocol.tutorial_s},

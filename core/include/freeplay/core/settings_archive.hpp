@@ -3,17 +3,21 @@
 // Serialize pattern): a struct declares `template <class Archive> void visit(Archive& a)` calling
 // `a.field(key, member, schema, help)` (or `a.required` / `a.optional`) once per member; its member initialisers are
 // the defaults. `settings_schema<T>()` builds the map schema from that list and `read_settings<T>(node)` fills a
-// struct from a node the schema validated.
+// struct from a node the schema validated. An enum member is written with `to_string(value)` and read with
+// `from_string(text, value)`, the one name/value pair its library declares next to it (found by argument-dependent
+// lookup); `enum_names` lists the names its schema allows.
 
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <vector>
 
+#include "freeplay/core/enum_names.hpp"
 #include "freeplay/core/yaml_schema.hpp"
 
 namespace freeplay {
@@ -23,6 +27,8 @@ template <typename T>
 std::string default_yaml_text(const T& value) {
   if constexpr (std::is_same_v<T, bool>) {
     return value ? "true" : "false";
+  } else if constexpr (std::is_enum_v<T>) {
+    return std::string(to_string(value));
   } else if constexpr (std::is_same_v<T, YAML::Node>) {
     YAML::Emitter out;
     out << YAML::Flow << value;
@@ -102,6 +108,11 @@ class ReadArchive {
     } else if constexpr (requires(T& t, ReadArchive& a) { t.visit(a); }) {  // a nested settings struct
       ReadArchive nested(node);
       value.visit(nested);
+    } else if constexpr (std::is_enum_v<T>) {
+      if (!from_string(node.Scalar(), value)) {
+        throw std::invalid_argument(fmt::format("'{}' is none of the allowed names (the schema lets it through)",
+                                                node.Scalar()));
+      }
     } else if constexpr (IsOptional<T>::value) {
       value = node.as<typename T::value_type>();
     } else {

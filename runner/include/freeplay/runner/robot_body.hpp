@@ -9,6 +9,7 @@
 
 #include "freeplay/core/geometry.hpp"
 #include "freeplay/runner/episode_observer.hpp"
+#include "freeplay/stage/stage_mode.hpp"
 
 namespace freeplay::runner {
 
@@ -39,7 +40,7 @@ class RobotBody {
   virtual void joint_state(RobotSnapshot& snapshot) const { (void)snapshot; }
 };
 
-/// Builds a robot body for the robot mode of a scenario ("kinematic" or "dynamic") and its arm reach (m).
-using RobotBodyFactory = std::function<std::unique_ptr<RobotBody>(const std::string& mode, double arm_reach)>;
+/// Builds a robot body for the robot mode of a scenario and its arm reach (m).
+using RobotBodyFactory = std::function<std::unique_ptr<RobotBody>(stage::StageMode mode, double arm_reach)>;
 
 }  // namespace freeplay::runner

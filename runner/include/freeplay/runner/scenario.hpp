@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "freeplay/runner/settings.hpp"
@@ -28,7 +29,7 @@ struct ControllerTarget {
 
 /// The `controller:` section of a scenario of kind `controller`.
 struct ControllerSpec {
-  std::string mode = "dynamic";             ///< "dynamic" (simulated actuators) | "kinematic"
+  stage::StageMode mode = stage::StageMode::dynamic;  ///< dynamic (simulated actuators) or kinematic
   double speed_fraction = 0.3;              ///< joint speed of the commanded profile, as a fraction of each joint's
                                             ///< velocity limit (ALMotion's angleInterpolationWithSpeed fraction)
   double torque_fraction = 0.5;             ///< and no faster than this fraction of each joint's effort limit can
@@ -44,7 +45,8 @@ struct ControllerSpec {
   /// The keys of `controller:` besides `targets`.
   template <typename Archive>
   void visit(Archive& a) {
-    a.field("mode", mode, Schema::enumeration({"dynamic", "kinematic"}), "robot simulation mode");
+    a.field("mode", mode, Schema::enumeration(enum_names({stage::StageMode::dynamic, stage::StageMode::kinematic})),
+            "robot simulation mode");
     a.field("speed_fraction", speed_fraction, Schema::number(0.01, 50.0),
             "joint speed of the commanded profile as a fraction of the Nao's velocity limits (> 1 exceeds them "
             "deliberately)");
@@ -61,14 +63,39 @@ struct ControllerSpec {
   }
 };
 
+/// What a scenario runs (`kind:`).
+enum class ScenarioKind {
+  episode,     ///< a session with children
+  controller,  ///< the Nao alone through a target sequence
+};
+
+/// The name scenarios use for a kind ("episode", "controller").
+std::string_view to_string(ScenarioKind kind);
+/// Sets `kind` to the kind named `text`; false (and `kind` unchanged) when `text` names none.
+bool from_string(std::string_view text, ScenarioKind& kind);
+
+/// Who plays (`condition:`).
+enum class Condition {
+  child_child,  ///< two children ("child-child")
+  child_robot,  ///< a child and the robot in the yellow place ("child-robot")
+  controller,   ///< the Nao alone on the child-robot stage (every scenario of kind controller)
+};
+
+/// The name scenarios and run records use for a condition ("child-child", "child-robot", "controller").
+std::string_view to_string(Condition condition);
+/// Sets `condition` to the condition named `text`; false (and `condition` unchanged) when `text` names none.
+bool from_string(std::string_view text, Condition& condition);
+/// The PInSoRo dataset's spelling of a condition in session files ("childrobot", otherwise "childchild").
+std::string_view pinsoro_name(Condition condition);
+
 /// A validated scenario.
 struct Scenario {
   std::string name;                      ///< short identifier, used in output names
   std::string description;               ///< one line for people
   std::string file;                      ///< where it was loaded from ("" when built in code)
-  std::string kind = "episode";          ///< "episode" (a session with children) | "controller" (the Nao alone)
+  ScenarioKind kind = ScenarioKind::episode;  ///< a session with children, or the Nao alone
   ControllerSpec controller;             ///< the controller sequence (kind "controller" only)
-  std::string condition;                 ///< "child-child" | "child-robot" ("controller" for kind controller)
+  Condition condition = Condition::child_child;  ///< who plays (controller for kind controller)
   int episodes = 1;                      ///< episodes to run
   std::uint64_t seed = 1;                ///< root seed; episode i uses SeedSequence(seed).derive("episode/i")
   ChildrenSettings children;             ///< who plays (population, explicit profile fields)

@@ -11,6 +11,7 @@
 
 #include "freeplay/core/settings_archive.hpp"
 #include "freeplay/planning/planner_settings.hpp"
+#include "freeplay/stage/stage_mode.hpp"
 
 namespace freeplay::runner {
 
@@ -70,7 +71,7 @@ struct ChildrenSettings {
 struct RobotSettings {
   std::string policy = "asocial";                         ///< robot play policy
   YAML::Node params = YAML::Node(YAML::NodeType::Map);    ///< policy-specific parameters (validated by the policy)
-  std::string mode = "kinematic";                         ///< "kinematic" | "dynamic"
+  stage::StageMode mode = stage::StageMode::kinematic;   ///< how the robot's body moves
   double arm_reach_m = 0.5;                               ///< reach used for the arm-reach disc (real sessions: 0.5)
 
   /// The keys of `robot:` (policies named by `vocabulary`).
@@ -78,7 +79,8 @@ struct RobotSettings {
   void visit(Archive& a, const ScenarioVocabulary& vocabulary) {
     a.field("policy", policy, Schema::enumeration(vocabulary.policies), "play policy");
     a.field("params", params, Schema::dictionary(Schema::any()), "policy parameters");
-    a.field("mode", mode, Schema::enumeration({"kinematic", "dynamic"}), "robot simulation mode");
+    a.field("mode", mode, Schema::enumeration(enum_names({stage::StageMode::kinematic, stage::StageMode::dynamic})),
+            "robot simulation mode");
     a.field("arm_reach_m", arm_reach_m, Schema::number(0.1, 1.0), "arm reach for the reachable disc");
   }
 };

@@ -10,12 +10,10 @@
 #include <string_view>
 #include <vector>
 
+#include "freeplay/stage/stage_mode.hpp"
 #include "freeplay/stage/stage_model.hpp"
 
 namespace freeplay::stage {
-
-/// How the stage moves: joint angles written directly (kinematic) or position actuators simulated (dynamic).
-enum class StageMode { kinematic, dynamic };
 
 /// Per-episode state of the stage; owned by one thread.
 class Stage {
