@@ -38,7 +38,7 @@ struct PlanOptions {
   std::string planner = planning::PlannerSettings{}.name;
   std::uint64_t layout_seed = 1;
   int items = 10;
-  double time_budget_s = planning::planner_default(&planning::PlannerSettings::time_budget_s);
+  double time_budget_s = planning::kDefaultTimeBudgetS;
   bool execute = false;
   bool json = false;
   bool faithful_endpoints = false;

@@ -137,7 +137,7 @@ enum class StealResponse {
 /// Settings of an executor.
 struct MoveExecutorConfig {
   /// Planning budget per move (wall clock, anytime planners use it all).
-  double time_budget_s = planner_default(&PlannerSettings::time_budget_s);
+  double time_budget_s = kDefaultTimeBudgetS;
   std::uint64_t iteration_budget = 0;     ///< planning iteration budget (0 = none), for reproducible anytime plans
   double pose_period_s = kPosePeriodS;    ///< time between finger poses (`/poses` at 10 Hz)
   /// Finger speed (m/s) of a re-timed path (one pose every speed × period along it); nullopt streams the plan's

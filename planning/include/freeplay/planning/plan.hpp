@@ -31,7 +31,7 @@ struct PlanRequest {
   std::vector<Obstacle> obstacles;        ///< footprints of the items on the tray (the moved one may be included)
   std::optional<Polygon2> moved_footprint;///< moved item's footprint at `start` (only used for the clearance metric)
   /// Wall-clock budget; anytime planners use all of it.
-  double time_budget_s = planner_default(&PlannerSettings::time_budget_s);
+  double time_budget_s = kDefaultTimeBudgetS;
   std::uint64_t iteration_budget = 0;     ///< anytime planners / PRM*: stop after this many iterations (0 = none)
 };
 
@@ -83,7 +83,7 @@ struct PlannerOptions {
   int blocked_occupancy = 50;       ///< sampling planners: a cell is an obstacle when its occupancy is >= this
   int goal_blocked_occupancy = 99;  ///< every planner: goal rejected when its cell's occupancy is >= this
   /// Sampling planners: finger speed of the re-timed path (5 mm per 0.1 s).
-  double finger_speed_mps = planner_default(&PlannerSettings::finger_speed_mps);
+  double finger_speed_mps = kDefaultFingerSpeedMps;
   double pose_period_s = kPosePeriodS;  ///< time between finger poses (`/poses` at 10 Hz)
   bool simplify = true;             ///< sampling planners: shorten the path with OMPL's PathSimplifier
   int outside_margin_cells = 20;    ///< A*: how far (cells) a path may leave the map

@@ -1,8 +1,7 @@
 #pragma once
 // The planner's user-facing settings (a scenario's `planner:` block), declared once by the library that uses them:
-// the member initialisers are the defaults every front starts from (`PlanRequest`, `PlannerOptions`,
-// `MoveExecutorConfig`, the command-line flags) and `visit` lists the keys, ranges and help
-// (core/settings_archive.hpp).
+// the defaults every front starts from (`PlanRequest`, `PlannerOptions`, `MoveExecutorConfig`, the command-line
+// flags) and `visit`, which lists the keys, ranges and help (core/settings_archive.hpp).
 
 #include <string>
 #include <vector>
@@ -11,11 +10,16 @@
 
 namespace freeplay::planning {
 
+/// Default planning budget (s): wall clock, only anytime planners use it up.
+inline constexpr double kDefaultTimeBudgetS = 1.0;
+/// Default robot finger speed (m/s): 5 mm per 0.1 s, as the real system.
+inline constexpr double kDefaultFingerSpeedMps = 0.05;
+
 /// `planner:` the motion planner of the robot's item moves.
 struct PlannerSettings {
   std::string name = "astar";          ///< motion planner
-  double time_budget_s = 1.0;          ///< wall-clock planning budget (only anytime planners use it up)
-  double finger_speed_mps = 0.05;      ///< robot finger speed (5 mm per 0.1 s)
+  double time_budget_s = kDefaultTimeBudgetS;        ///< wall-clock planning budget (anytime planners use it up)
+  double finger_speed_mps = kDefaultFingerSpeedMps;  ///< robot finger speed (5 mm per 0.1 s)
   bool reject_blocked_goals = false;   ///< refuse goals inside other footprints (the real planner does not)
 
   /// The keys of `planner:` (`planner_names`: the names `name` accepts).
@@ -31,12 +35,5 @@ struct PlannerSettings {
             "item then lands on the others and the physics pushes them apart)");
   }
 };
-
-/// One default of the planner settings, read at compile time (`planner_default(&PlannerSettings::time_budget_s)`),
-/// for the structs whose defaults follow the planner's (a constant, so their constructors stay trivial).
-template <typename T>
-consteval T planner_default(T PlannerSettings::*member) {
-  return PlannerSettings{}.*member;
-}
 
 }  // namespace freeplay::planning

@@ -20,7 +20,7 @@ struct RobotNodeOptions {
   YAML::Node policy_params;             ///< its parameters
   std::string planner = planning::PlannerSettings{}.name;  ///< motion planner
   /// Planning budget per move (s).
-  double planner_budget_s = planning::planner_default(&planning::PlannerSettings::time_budget_s);
+  double planner_budget_s = planning::kDefaultTimeBudgetS;
   std::uint64_t seed = 1;               ///< the policy's and planner's random streams
   double duration_s = 0.0;              ///< stop after this many seconds (0: until stopped)
   std::string node_name = "freeplay_robot";  ///< ros::init name
