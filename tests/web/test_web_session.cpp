@@ -25,17 +25,24 @@ TEST(WebSession, AChildChildSessionTakesExperimentCommandsAndRefusesRobotOnes) {
                                      "yellow":{"age":8,"gender":"female","tablet_familiarity":"0"}})"));
     answers.push_back(post(port, R"({"type":"signal","name":"start_tutorial"})"));
     answers.push_back(post(port, R"({"type":"marker","kind":"issue"})"));
+    // Bad requests through the whole HTTP path: 400 with the reason, never a 500.
+    answers.push_back(post(port, "{\"type\":\"note\",\"text\":\"caf\xC3\x28\"}"));
+    answers.push_back(post(port, R"({"type":"sparc_timeout","seconds":1e999})"));
   };
   const std::atomic<bool> stop{false};
   const auto report = serve_web(scenario, 5, options, stop);
   ASSERT_FALSE(report.result.aborted);
-  ASSERT_EQ(answers.size(), 4u);
+  ASSERT_EQ(answers.size(), 6u);
   EXPECT_EQ(answers[0].first, 409);
   EXPECT_NE(answers[0].second.find("no robot"), std::string::npos);
   EXPECT_EQ(answers[1].first, 200);
   EXPECT_EQ(answers[2].first, 202);
   EXPECT_NE(answers[2].second.find("sandtray/signals/start_tutorial"), std::string::npos);
   EXPECT_EQ(answers[3].first, 409);  // before free play
+  EXPECT_EQ(answers[4].first, 400);
+  EXPECT_NE(answers[4].second.find("ill-formed UTF-8"), std::string::npos) << answers[4].second;
+  EXPECT_EQ(answers[5].first, 400);
+  EXPECT_NE(answers[5].second.find("number overflow parsing '1e999'"), std::string::npos) << answers[5].second;
   const auto yaml = YAML::LoadFile((out / "experiment.yaml").string());
   EXPECT_EQ(yaml["condition"].as<std::string>(), "childchild");
   EXPECT_EQ(yaml["yellow-participant"]["age"].as<int>(), 8);
@@ -53,5 +60,5 @@ TEST(WebSession, AChildChildSessionTakesExperimentCommandsAndRefusesRobotOnes) {
   EXPECT_EQ(signals, 1);
   EXPECT_TRUE(std::filesystem::exists(out / "episode.json"));
   EXPECT_GT(report.ticks, 60u);  // ≈ 80 ticks of 0.1 s
-  EXPECT_EQ(report.server.refused, 2u);
+  EXPECT_EQ(report.server.refused, 4u);
 }

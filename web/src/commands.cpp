@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 
 #include "freeplay/runner/settings.hpp"
@@ -103,6 +104,19 @@ nlohmann::json child_record(const nlohmann::json& object, const std::string& sea
   return out;
 }
 
+// The JSON parser's message without its "[json.exception.<kind>.<id>] " prefix; it quotes the bytes it read last,
+// so only printable ASCII of them is kept ('?' for the rest: a reply never echoes ill-formed UTF-8).
+std::string parser_message(const nlohmann::json::exception& e) {
+  std::string message = e.what();
+  if (message.starts_with("[json.exception.")) {
+    if (const auto end = message.find("] "); end != std::string::npos) message.erase(0, end + 2);
+  }
+  for (char& ch : message) {
+    if (static_cast<unsigned char>(ch) < 0x20 || static_cast<unsigned char>(ch) >= 0x7f) ch = '?';
+  }
+  return message;
+}
+
 const std::vector<std::string>& types() {
   static const std::vector<std::string> kTypes = {"move", "say", "look_at", "point_at", "stop", "mode", "sparc",
                                                   "sparc_timeout", "signal", "condition", "demographics", "marker",
@@ -118,13 +132,11 @@ Command parse_command(const std::string& body, const std::vector<std::string>& i
   nlohmann::json json;
   try {
     json = nlohmann::json::parse(body);
-  } catch (const nlohmann::json::exception& e) {  // a syntax error, ill-formed UTF-8, or a number like 1e999
-    // The parser's message quotes the bytes it read last: only printable ASCII of them goes into the reply.
-    std::string message = e.what();
-    for (char& ch : message) {
-      if (static_cast<unsigned char>(ch) < 0x20 || static_cast<unsigned char>(ch) >= 0x7f) ch = '?';
-    }
-    throw CommandError(400, fmt::format("the body is not JSON: {}", message));
+  } catch (const nlohmann::json::out_of_range& e) {  // valid JSON syntax, but a number like 1e999 overflows a double
+    throw CommandError(400, fmt::format("the body has a number out of range: {} (allowed: magnitudes up to {:g})",
+                                        parser_message(e), std::numeric_limits<double>::max()));
+  } catch (const nlohmann::json::exception& e) {  // a syntax error or ill-formed UTF-8
+    throw CommandError(400, fmt::format("the body is not JSON: {}", parser_message(e)));
   }
   if (!json.is_object() || !json.contains("type") || !json["type"].is_string()) {
     throw CommandError(400, fmt::format("a command is a JSON object with a string 'type' (allowed: {})", command_types()));

@@ -33,7 +33,7 @@ struct SessionConfig {
 /// What one child did in a session.
 struct ChildOutcome {
   ChildProfile profile;          ///< who it was
-  ChildTimeline timeline;        ///< ground truth as the coder labels it: social engagement coded from behaviour
+  ChildTimeline timeline;        ///< ground truth as the coder labels it: the three axes coded from behaviour
   ChildTimeline internal;        ///< the child's own state (intentions) over the whole session
   double quit_time_s = -1.0;     ///< when it decided to stop (negative: never)
   ChildCounters counters;        ///< behaviour counts
