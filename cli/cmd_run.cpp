@@ -89,7 +89,7 @@ void run_command(const RunCommandOptions& o, bool suite_command) {
   const auto suite = is_suite ? runner::load_suite(o.file, overrides, vocabulary)
                               : runner::single_scenario_suite(o.file, overrides, vocabulary);
   for (const auto& v : suite.variants) {  // e.g. a Python policy given to the C++ program: say so before starting
-    if (v.scenario.condition == runner::Condition::child_robot) policies::check_policy_available(v.scenario.robot.policy);
+    if (v.scenario.condition == runner::Condition::ChildRobot) policies::check_policy_available(v.scenario.robot.policy);
   }
   const ObserverOptions observer_options{o.record};
   if (!observers_available() && std::any_of(suite.variants.begin(), suite.variants.end(), [&](const auto& v) {

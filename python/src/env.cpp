@@ -77,10 +77,10 @@ class EnvEpisode {
       : perceives_children_(perceives_children), privileged_(privileged) {
     auto suite = runner::single_scenario_suite(file, overrides, python_vocabulary());
     scenario_ = std::move(suite.variants.front().scenario);
-    if (scenario_.condition != runner::Condition::child_robot) {
+    if (scenario_.condition != runner::Condition::ChildRobot) {
       throw InputError(fmt::format("freeplay.Env steps the robot, but scenario '{}' is {}", scenario_.name,
                                    runner::to_string(scenario_.condition)),
-                       "condition", std::string(runner::to_string(runner::Condition::child_robot)), {file, 1, 1});
+                       "condition", std::string(runner::to_string(runner::Condition::ChildRobot)), {file, 1, 1});
     }
     scenario_.robot.policy = std::string(policies::kPythonPolicyPrefix) + "env";
   }

@@ -41,7 +41,7 @@ py::dict suite_data(const runner::Suite& suite, bool is_suite) {
     d["condition"] = std::string(runner::to_string(v.scenario.condition));
     d["episodes"] = v.scenario.episodes;
     d["seed"] = v.scenario.seed;
-    d["policy"] = v.scenario.condition == runner::Condition::child_robot ? py::object(py::str(v.scenario.robot.policy)) : py::none();
+    d["policy"] = v.scenario.condition == runner::Condition::ChildRobot ? py::object(py::str(v.scenario.robot.policy)) : py::none();
     d["config_hash"] = v.scenario.config_hash;
     d["scenario"] = yaml_to_python(v.scenario.source);
     variants.append(d);

@@ -78,7 +78,7 @@ struct BagRecorder::Impl {
   runner::RecordSettings settings;
   SessionPaths paths;
   std::string id;
-  runner::Condition condition = runner::Condition::child_child;
+  runner::Condition condition = runner::Condition::ChildChild;
   std::uint64_t seed = 0;
   std::string scenario_name;
   std::string gl_renderer;
@@ -176,7 +176,7 @@ struct BagRecorder::Impl {
                               scenario_name, id, seed);
     info.timestamp_ns = ros_time(freeplay_start.value_or(0.0)).toNSec();
     info.condition = runner::pinsoro_name(condition);
-    const std::string suffix = condition == runner::Condition::child_robot ? "2" : "1";
+    const std::string suffix = condition == runner::Condition::ChildRobot ? "2" : "1";
     for (const auto& p : participants) {
       Participant out = p;
       if (children != nullptr && children->contains(p.id)) {
@@ -324,7 +324,7 @@ void BagRecorder::begin(const runner::EpisodeInfo& info) {
   d.clocks = PublisherClocks(info.seed);
   TickTopicsOptions topics_options;
   topics_options.png_level = d.settings.png_level;
-  const bool child_robot = info.scenario != nullptr && info.scenario->condition == runner::Condition::child_robot;
+  const bool child_robot = info.scenario != nullptr && info.scenario->condition == runner::Condition::ChildRobot;
   topics_options.streams = child_robot ? kBagStreams : kBagStreams & ~unsigned{kRobotLinks};
   if (child_robot) topics_options.arm_reach_m = info.scenario->robot.arm_reach_m;
   d.tick_topics = std::make_unique<TickTopics>(info.seed, topics_options);

@@ -327,7 +327,7 @@ struct GraphSide::Impl {
         cameras(live, scenario.recording.jpeg_quality),
         publisher_ref(publisher) {
     for (const auto& declaration : publisher.topics().declarations()) graph->advertise(declaration);
-    const bool child_robot = scenario.condition == runner::Condition::child_robot;
+    const bool child_robot = scenario.condition == runner::Condition::ChildRobot;
     if (child_robot) {
       const auto body = runner::SharedModels::shipped().robot_body(scenario.robot.mode, scenario.robot.arm_reach_m);
       publisher.set_reach(body->reach());
@@ -346,7 +346,7 @@ struct GraphSide::Impl {
   static std::unique_ptr<ros_graph::SandtrayGraph> make_graph(const runner::Scenario& scenario, const ServeOptions& options) {
     std::string error;
     if (!ros_graph::start_ros(options.node_name, options.master_timeout_s, error)) throw std::runtime_error(error);
-    const bool child_robot = scenario.condition == runner::Condition::child_robot;
+    const bool child_robot = scenario.condition == runner::Condition::ChildRobot;
     return std::make_unique<ros_graph::SandtrayGraph>(
         ros_graph::NodeOptions{options.node_name, options.rate != 1.0, options.external_robot && child_robot});
   }

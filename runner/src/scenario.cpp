@@ -57,7 +57,7 @@ std::shared_ptr<const Schema> controller_schema(const ScenarioVocabulary& vocabu
 }
 
 // The conditions a scenario of kind episode may name.
-constexpr std::initializer_list<Condition> kEpisodeConditions = {Condition::child_child, Condition::child_robot};
+constexpr std::initializer_list<Condition> kEpisodeConditions = {Condition::ChildChild, Condition::ChildRobot};
 
 void check_kind_sections(const YAML::Node& root, ScenarioKind kind,
                          const std::vector<std::string>& episode_only_keys, const std::string& file,
@@ -73,7 +73,7 @@ void check_kind_sections(const YAML::Node& root, ScenarioKind kind,
                             key, "remove it, or use kind: episode", location_of(root[key], file)));
     }
     const YAML::Node condition = root["condition"];
-    if (condition.IsDefined() && condition.IsScalar() && condition.Scalar() != to_string(Condition::child_robot)) {
+    if (condition.IsDefined() && condition.IsScalar() && condition.Scalar() != to_string(Condition::ChildRobot)) {
       errors.add(InputError("controller scenarios run the child-robot stage", "condition",
                             "child-robot, or leave it out", location_of(root["condition"], file)));
     }
@@ -175,23 +175,6 @@ bool from_string(std::string_view text, ScenarioKind& kind) {
   return enum_from_string(text, {ScenarioKind::episode, ScenarioKind::controller}, kind);
 }
 
-std::string_view to_string(Condition condition) {
-  switch (condition) {
-    case Condition::child_child: return "child-child";
-    case Condition::child_robot: return "child-robot";
-    case Condition::controller: return "controller";
-  }
-  return "unknown";
-}
-
-bool from_string(std::string_view text, Condition& condition) {
-  return enum_from_string(text, {Condition::child_child, Condition::child_robot, Condition::controller}, condition);
-}
-
-std::string_view pinsoro_name(Condition condition) {
-  return condition == Condition::child_robot ? "childrobot" : "childchild";
-}
-
 std::shared_ptr<const Schema> scenario_schema(const ScenarioVocabulary& vocabulary) {
   // Schemas are immutable: each thread keeps the last one built (a suite validates many scenarios with one
   // vocabulary).
@@ -220,10 +203,10 @@ Scenario scenario_from_document(YamlDocument document, const std::vector<std::st
   if (root.IsMap() && root["kind"].IsScalar()) from_string(root["kind"].Scalar(), kind);
   if (root.IsMap()) check_kind_sections(root, kind, episode_only_keys, document.file, errors);
   // Without errors an episode names a valid condition (checked above); a controller's is always `controller`.
-  Condition condition = Condition::child_child;
+  Condition condition = Condition::ChildChild;
   if (root.IsMap() && root["condition"].IsScalar()) from_string(root["condition"].Scalar(), condition);
-  if (kind == ScenarioKind::controller) condition = Condition::controller;  // the Nao alone on the child-robot stage
-  if (errors.empty() && condition == Condition::child_robot && root["children"]["yellow"].IsDefined()) {
+  if (kind == ScenarioKind::controller) condition = Condition::Controller;  // the Nao alone on the child-robot stage
+  if (errors.empty() && condition == Condition::ChildRobot && root["children"]["yellow"].IsDefined()) {
     errors.add(InputError("the robot takes the yellow place in child-robot scenarios", "children.yellow",
                           "remove children.yellow, or use condition: child-child",
                           location_of(root["children"]["yellow"], document.file)));
@@ -237,7 +220,7 @@ Scenario scenario_from_document(YamlDocument document, const std::vector<std::st
       }
     }
   }
-  if (errors.empty() && condition == Condition::child_child) {
+  if (errors.empty() && condition == Condition::ChildChild) {
     for (std::size_t i = 0; i < root["cameras"].size(); ++i) {
       const YAML::Node name = root["cameras"][i]["name"];
       if (name.Scalar() == "CameraTop" || name.Scalar() == "CameraBottom") {

@@ -35,7 +35,7 @@ agents::ChildProfile make_profile(const ChildSpec& spec, const agents::Populatio
 agents::Population population_of(const Scenario& s) {
   if (s.children.population == "pinsoro-cc") return agents::Population::pinsoro_child_child();
   if (s.children.population == "pinsoro-cr") return agents::Population::pinsoro_child_robot();
-  return s.condition == Condition::child_robot ? agents::Population::pinsoro_child_robot()
+  return s.condition == Condition::ChildRobot ? agents::Population::pinsoro_child_robot()
                                       : agents::Population::pinsoro_child_child();
 }
 
@@ -62,7 +62,7 @@ class SimWorld::BodyFollower final : public planning::ArmFollower {
 
 SimWorld::SimWorld(const Scenario& scenario, const SeedSequence& seeds, const SharedModels& models)
     : scenario_(scenario), models_(models), tray_(models.catalogue, tray_config(), seeds.stream("sandtray")),
-      child_robot_(scenario.condition == Condition::child_robot),
+      child_robot_(scenario.condition == Condition::ChildRobot),
       robot_gaze_point_(sim::kScreenWidthM / 2, -sim::kScreenHeightM / 2, 0.0) {
   for (const auto& item : tray_.items()) agent_item_.push_back(agents::item_index(item.name));
   const auto& params = *models.child_params;

@@ -52,7 +52,7 @@ std::string write_summaries(const std::filesystem::path& dir, const Suite& suite
 void check_policies(const Suite& suite) {
   for (const auto& variant : suite.variants) {
     const auto& scenario = variant.scenario;
-    if (scenario.kind == ScenarioKind::controller || scenario.condition != Condition::child_robot) continue;
+    if (scenario.kind == ScenarioKind::controller || scenario.condition != Condition::ChildRobot) continue;
     policies::make_policy(scenario.robot.policy, scenario.robot.params)->check_run(scenario.episodes);
   }
 }
@@ -124,7 +124,7 @@ RunReport run_suite(const Suite& suite, const RunOptions& options, const Episode
         r["scenario"] = task.variant->scenario.name;
         r["scenario_file"] = task.variant->scenario.file;
         r["condition"] = std::string(to_string(task.variant->scenario.condition));
-        if (task.variant->scenario.condition == Condition::child_robot) r["policy"] = task.variant->scenario.robot.policy;
+        if (task.variant->scenario.condition == Condition::ChildRobot) r["policy"] = task.variant->scenario.robot.policy;
         r["episode"] = task.index;
         r["episode_id"] = file_id;
         r["seed"] = task.seed;

@@ -14,10 +14,10 @@ namespace freeplay::runner {
 const PinsoroDurations* pinsoro_durations(const std::string& condition) {
   static const PinsoroDurations child_child{45, 24.15, 11.25, 22.4, 0.89, 0.56, 0.38};
   static const PinsoroDurations child_robot{30, 19.18, 10.0, 17.4, 0.73, 0.37, 0.13};
-  Condition parsed = Condition::controller;
+  Condition parsed = Condition::Controller;
   if (!from_string(condition, parsed)) return nullptr;
-  if (parsed == Condition::child_child) return &child_child;
-  if (parsed == Condition::child_robot) return &child_robot;
+  if (parsed == Condition::ChildChild) return &child_child;
+  if (parsed == Condition::ChildRobot) return &child_robot;
   return nullptr;
 }
 
@@ -179,7 +179,7 @@ std::string summary_markdown(const std::vector<VariantSummary>& summaries, const
     const auto& stats = s.duration_min;
     const auto* ref = pinsoro_durations(s.condition);
     const bool asocial_reference =
-        ref != nullptr && (s.condition == to_string(Condition::child_child) || s.policy == "asocial");
+        ref != nullptr && (s.condition == to_string(Condition::ChildChild) || s.policy == "asocial");
     out += fmt::format("| {} | {} | {} | {} | {:.2f} [{:.2f}, {:.2f}] | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {} | {} |\n",
                        s.variant, s.condition, s.policy.empty() ? "–" : s.policy, stats.n, stats.mean,
                        stats.ci95.low, stats.ci95.high, stats.sd, stats.median, s.still_playing[0], s.still_playing[1],

@@ -25,7 +25,7 @@ runner::Suite tiny_suite() {
     runner::SuiteVariant v;
     v.id = id;
     v.scenario.name = id.substr(0, id.find('['));
-    v.scenario.condition = id == "child-child" ? runner::Condition::child_child : runner::Condition::child_robot;
+    v.scenario.condition = id == "child-child" ? runner::Condition::ChildChild : runner::Condition::ChildRobot;
     v.scenario.robot.policy = id.find("social") != std::string::npos && id.find("asocial") == std::string::npos ? "social"
                                                                                                          : "asocial";
     v.scenario.episodes = episodes;

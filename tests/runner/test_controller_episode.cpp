@@ -205,7 +205,7 @@ TEST(ControllerScenario, ParsesTheSequence) {
       "    - point: [0.2, -0.05]\n    - look: [0.3, -0.2, 0.1]\n    - move: {item: ball, to: [0.2, -0.1]}\n"
       "    - posture: Stand\n    - wait: 1.5\n    - random_points: {count: 4}\n");
   EXPECT_EQ(s.kind, ScenarioKind::controller);
-  EXPECT_EQ(s.condition, Condition::controller);
+  EXPECT_EQ(s.condition, Condition::Controller);
   EXPECT_EQ(s.controller.mode, stage::StageMode::dynamic);
   EXPECT_DOUBLE_EQ(s.controller.speed_fraction, 0.3);
   EXPECT_EQ(s.controller.trace_interval_steps, 50);

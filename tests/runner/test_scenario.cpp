@@ -97,7 +97,7 @@ TEST(Scenario, ConfigHashDependsOnContent) {
 TEST(Scenario, KindConditionAndModeAreReadOnceIntoTheirEnums) {
   const auto s = parse("name: cr\ncondition: child-robot\nrobot: {mode: dynamic}\n");
   EXPECT_EQ(s.kind, ScenarioKind::episode);
-  EXPECT_EQ(s.condition, Condition::child_robot);
+  EXPECT_EQ(s.condition, Condition::ChildRobot);
   EXPECT_EQ(s.robot.mode, stage::StageMode::dynamic);
   EXPECT_EQ(parse("name: cc\ncondition: child-child\n").robot.mode, stage::StageMode::kinematic);
   const std::string missing = error_of("name: x\n");
@@ -106,14 +106,14 @@ TEST(Scenario, KindConditionAndModeAreReadOnceIntoTheirEnums) {
 }
 
 TEST(Scenario, EnumNamesRoundTrip) {
-  for (const auto condition : {Condition::child_child, Condition::child_robot, Condition::controller}) {
-    Condition read = Condition::child_child;
+  for (const auto condition : {Condition::ChildChild, Condition::ChildRobot, Condition::Controller}) {
+    Condition read = Condition::ChildChild;
     ASSERT_TRUE(from_string(to_string(condition), read));
     EXPECT_EQ(read, condition);
   }
-  EXPECT_EQ(to_string(Condition::child_robot), "child-robot");
-  EXPECT_EQ(pinsoro_name(Condition::child_robot), "childrobot");
-  EXPECT_EQ(pinsoro_name(Condition::child_child), "childchild");
+  EXPECT_EQ(to_string(Condition::ChildRobot), "child-robot");
+  EXPECT_EQ(pinsoro_name(Condition::ChildRobot), "childrobot");
+  EXPECT_EQ(pinsoro_name(Condition::ChildChild), "childchild");
   for (const auto kind : {ScenarioKind::episode, ScenarioKind::controller}) {
     ScenarioKind read = ScenarioKind::episode;
     ASSERT_TRUE(from_string(to_string(kind), read));
@@ -124,7 +124,7 @@ TEST(Scenario, EnumNamesRoundTrip) {
     ASSERT_TRUE(from_string(to_string(mode), read));
     EXPECT_EQ(read, mode);
   }
-  Condition unchanged = Condition::child_robot;
+  Condition unchanged = Condition::ChildRobot;
   EXPECT_FALSE(from_string("robot-robot", unchanged));
-  EXPECT_EQ(unchanged, Condition::child_robot);
+  EXPECT_EQ(unchanged, Condition::ChildRobot);
 }

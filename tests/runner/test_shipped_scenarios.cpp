@@ -39,7 +39,7 @@ TEST(ShippedScenarios, BaselinesAreLargeAndThePInSoRoVariantHasItsSessionCounts)
   const auto check = [](const char* file, int cc, int cr) {
     const auto suite = load_suite(scenarios_dir() / file);
     ASSERT_EQ(suite.variants.size(), 3u) << file;
-    EXPECT_EQ(suite.variants[0].scenario.condition, Condition::child_child);
+    EXPECT_EQ(suite.variants[0].scenario.condition, Condition::ChildChild);
     EXPECT_EQ(suite.variants[0].scenario.episodes, cc);
     EXPECT_EQ(suite.variants[1].scenario.robot.policy, "asocial");
     EXPECT_EQ(suite.variants[1].scenario.episodes, cr);

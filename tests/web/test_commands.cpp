@@ -86,6 +86,10 @@ TEST(WebCommands, ExperimentAndProtocolCommandsAreChecked) {
   EXPECT_EQ(refusal(R"({"type":"sparc_timeout","seconds":0})").first, 400);
   EXPECT_EQ(parse_command(R"({"type":"camera","name":"env_camera"})", kItems).target, CommandTarget::View);
   EXPECT_NE(refusal(R"({"type":"camera","name":"webcam"})").second.find("env_camera"), std::string::npos);
+  // The experiment's condition in the PInSoRo spelling of the one Condition (agents/condition.hpp).
+  EXPECT_EQ(parse_command(R"({"type":"condition","condition":"childrobot"})", kItems).target, CommandTarget::Experiment);
+  EXPECT_NE(refusal(R"({"type":"condition","condition":"child-robot"})").second.find("allowed: childchild, childrobot"),
+            std::string::npos);
   const auto relative = parse_command(R"({"type":"move","item":"ball","x":-0.05,"y":0.02,"frame":"item","via":"sparc/selected_action"})", kItems);
   EXPECT_EQ(relative.args["frame"], "item");
   EXPECT_EQ(relative.args["via"], "sparc/selected_action");

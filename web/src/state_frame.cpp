@@ -38,7 +38,7 @@ nlohmann::json scene_json(const sim::ItemCatalogue& catalogue, const runner::Sce
                      {"polygon", polygon(item.polygon)},
                      {"colour", {item.colour[0], item.colour[1], item.colour[2]}}});
   }
-  const bool robot = scenario.condition == runner::Condition::child_robot;
+  const bool robot = scenario.condition == runner::Condition::ChildRobot;
   return {{"type", "scene"},
           {"screen", {{"width_m", sim::kScreenWidthM}, {"height_m", sim::kScreenHeightM},
                       {"width_px", sim::kScreenWidthPx}, {"height_px", sim::kScreenHeightPx},

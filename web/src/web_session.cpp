@@ -66,7 +66,7 @@ class Session {
       cv::imencode(".png", sim::item_picture(item, kItemPicturePx), png);
       item_pictures_["/api/item/" + item.name + ".png"] = std::string(png.begin(), png.end());
     }
-    if (scenario.condition == runner::Condition::child_robot) {
+    if (scenario.condition == runner::Condition::ChildRobot) {
       robot_ = std::make_unique<WizardRobot>(scenario, seed, log_, options.mode, options.sparc_timeout_s);
     }
     // The session's bag (`<out>/recording/`), paused until the page starts it unless told to record.
@@ -468,7 +468,7 @@ WebSessionReport serve_web(const runner::Scenario& scenario, std::uint64_t seed,
   auto server_options = options.server;
   std::vector<std::string> cameras;
   for (const auto& c : scenario.cameras) cameras.push_back(c.name);
-  server_options.foxglove = foxglove_channels(cameras, scenario.condition == runner::Condition::child_robot);
+  server_options.foxglove = foxglove_channels(cameras, scenario.condition == runner::Condition::ChildRobot);
   WebServer server(
       server_options,
       [&ready](const HttpRequest& r) {

@@ -11,18 +11,15 @@
 
 #include "freeplay/agents/child_agent.hpp"
 #include "freeplay/agents/coder.hpp"
+#include "freeplay/agents/condition.hpp"
 #include "freeplay/agents/params.hpp"
 #include "freeplay/agents/profile.hpp"
 
 namespace freeplay::agents {
 
-/// Who plays with the purple child.
-enum class Condition : std::uint8_t { ChildChild, ChildRobot };
-
-
 /// Settings of one simulated session.
 struct SessionConfig {
-  Condition condition = Condition::ChildChild;        ///< partner of the purple child
+  Condition condition = Condition::ChildChild;        ///< partner of the purple child (any but ChildChild: the robot)
   double tick_s = 0.1;                                 ///< the game's 10 Hz tick
   std::optional<ChildProfile> purple_profile;          ///< fixed purple profile (sampled when empty)
   std::optional<ChildProfile> yellow_profile;          ///< fixed yellow profile (child-child only)

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "freeplay/agents/condition.hpp"
 #include "freeplay/runner/settings.hpp"
 
 namespace freeplay::runner {
@@ -74,19 +75,11 @@ std::string_view to_string(ScenarioKind kind);
 /// Sets `kind` to the kind named `text`; false (and `kind` unchanged) when `text` names none.
 bool from_string(std::string_view text, ScenarioKind& kind);
 
-/// Who plays (`condition:`).
-enum class Condition {
-  child_child,  ///< two children ("child-child")
-  child_robot,  ///< a child and the robot in the yellow place ("child-robot")
-  controller,   ///< the Nao alone on the child-robot stage (every scenario of kind controller)
-};
-
-/// The name scenarios and run records use for a condition ("child-child", "child-robot", "controller").
-std::string_view to_string(Condition condition);
-/// Sets `condition` to the condition named `text`; false (and `condition` unchanged) when `text` names none.
-bool from_string(std::string_view text, Condition& condition);
-/// The PInSoRo dataset's spelling of a condition in session files ("childrobot", otherwise "childchild").
-std::string_view pinsoro_name(Condition condition);
+/// Who plays (`condition:`): the agents' enum, with its names and its PInSoRo spelling (freeplay/agents/condition.hpp).
+using agents::Condition;
+using agents::from_string;
+using agents::pinsoro_name;
+using agents::to_string;
 
 /// A validated scenario.
 struct Scenario {
@@ -95,7 +88,7 @@ struct Scenario {
   std::string file;                      ///< where it was loaded from ("" when built in code)
   ScenarioKind kind = ScenarioKind::episode;  ///< a session with children, or the Nao alone
   ControllerSpec controller;             ///< the controller sequence (kind "controller" only)
-  Condition condition = Condition::child_child;  ///< who plays (controller for kind controller)
+  Condition condition = Condition::ChildChild;  ///< who plays (controller for kind controller)
   int episodes = 1;                      ///< episodes to run
   std::uint64_t seed = 1;                ///< root seed; episode i uses SeedSequence(seed).derive("episode/i")
   ChildrenSettings children;             ///< who plays (population, explicit profile fields)
