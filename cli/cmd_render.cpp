@@ -2,6 +2,7 @@
 // episode); `freeplay list cameras`.
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
 #include <Eigen/Geometry>
@@ -17,6 +18,7 @@
 #include "freeplay/runner/camera_rig.hpp"
 #include "freeplay/sim/item_catalogue.hpp"
 #include "freeplay/sim/sandtray.hpp"
+#include "freeplay/stage/camera_names.hpp"
 #include "freeplay/stage/renderer.hpp"
 #include "freeplay/stage/stage.hpp"
 #include "scenario_moment.hpp"
@@ -234,8 +236,9 @@ const RegisterCommand register_render(60, [](CLI::App& program) {
   auto* scene = cmd->add_option("--scene", args->scene, "child-child or child-robot (the NAO replaces the yellow child)")
                     ->capture_default_str();
   cmd->add_option("--camera", args->cameras,
-                  "camera_purple, camera_yellow, env_camera, CameraTop, CameraBottom (child-robot), top_view; "
-                  "with --scenario: repeatable, default the scenario's cameras");
+                  fmt::format("{}, {} (child-robot), {}; with --scenario: repeatable, default the scenario's cameras",
+                              fmt::join(stage::kRoomCameraNames, ", "), fmt::join(stage::kNaoCameraNames, ", "),
+                              stage::kTopViewCameraName));
   cmd->add_flag("--depth", args->depth, "Write the depth image: 16-bit grey PNG in millimetres (0 = none)");
   auto* preset = cmd->add_option("--preset", args->preset, "fast (no MSAA/shadows/reflections/skybox) or pretty "
                                                            "(default: fast, or the scenario's rendering.preset)");

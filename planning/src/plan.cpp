@@ -45,7 +45,11 @@ std::string_view failure_reason_name(FailureReason reason) {
   return "unknown";
 }
 
-std::vector<std::string> planner_names() { return {"astar", "bitstar", "prmstar", "rrtconnect", "rrtstar"}; }
+std::vector<std::string> planner_names() {
+  std::vector<std::string> names(kPlannerNames.begin(), kPlannerNames.end());
+  std::sort(names.begin(), names.end());
+  return names;
+}
 
 std::string planner_names_joined() {
   std::string out;

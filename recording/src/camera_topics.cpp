@@ -9,12 +9,9 @@
 #include <opencv2/imgproc.hpp>
 
 #include "freeplay/core/error.hpp"
+#include "freeplay/stage/camera_names.hpp"
 
 namespace freeplay::recording {
-
-std::vector<std::string> recordable_cameras() {
-  return {"camera_purple", "camera_yellow", "env_camera", "CameraTop", "CameraBottom"};
-}
 
 CameraTopics camera_topics(std::string_view camera) {
   const std::string name(camera);
@@ -37,7 +34,7 @@ CameraTopics camera_topics(std::string_view camera) {
             name + "_optical_frame"};
   }
   throw InputError(fmt::format("camera '{}' has no recorded topics", name), "camera",
-                   fmt::format("{}", fmt::join(recordable_cameras(), ", ")));
+                   fmt::format("{}", fmt::join(stage::real_camera_names(), ", ")));
 }
 
 std::vector<std::uint8_t> encode_jpeg(const cv::Mat& rgb, int quality) {

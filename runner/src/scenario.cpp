@@ -8,6 +8,7 @@
 
 #include "freeplay/core/rng.hpp"
 #include "freeplay/core/settings_archive.hpp"
+#include "freeplay/stage/camera_names.hpp"
 #include "freeplay/stage/nao_description.hpp"
 
 namespace freeplay::runner {
@@ -223,10 +224,11 @@ Scenario scenario_from_document(YamlDocument document, const std::vector<std::st
   if (errors.empty() && condition == Condition::ChildChild) {
     for (std::size_t i = 0; i < root["cameras"].size(); ++i) {
       const YAML::Node name = root["cameras"][i]["name"];
-      if (name.Scalar() == "CameraTop" || name.Scalar() == "CameraBottom") {
+      if (stage::is_nao_camera(name.Scalar())) {
         errors.add(InputError(fmt::format("'{}' is a camera of the robot's head, absent in child-child scenarios",
                                           name.Scalar()),
-                              fmt::format("cameras[{}].name", i), "camera_purple, camera_yellow, env_camera",
+                              fmt::format("cameras[{}].name", i),
+                              fmt::format("{}", fmt::join(stage::kRoomCameraNames, ", ")),
                               location_of(name, document.file)));
       }
     }

@@ -11,6 +11,7 @@
 #include "freeplay/core/assets.hpp"
 #include "freeplay/core/atomic_file.hpp"
 #include "freeplay/core/error.hpp"
+#include "freeplay/stage/camera_names.hpp"
 #include "freeplay/core/sandtray_links.hpp"
 
 namespace freeplay::stage {
@@ -435,15 +436,18 @@ const CameraSpec& StageModel::camera(std::string_view name) const {
 
 void StageModel::index_model() {
   const mjModel* m = model_;
-  auto add_camera = [&](const std::string& name, const std::string& description, CameraIntrinsics color,
+  auto add_camera = [&](std::string_view camera, const std::string& description, CameraIntrinsics color,
                         CameraIntrinsics depth, bool on_robot) {
+    const std::string name(camera);
     cameras_.push_back({name, description, require_id(m, mjOBJ_CAMERA, name), color, depth, on_robot});
   };
-  add_camera("camera_purple", "RealSense SR300 at the left short end, filming the purple child", kSr300Color,
+  // The names come from camera_names.hpp, which the parser and the recorder read without linking the stage.
+  const auto [camera_purple, camera_yellow, env_camera] = kRoomCameraNames;
+  add_camera(camera_purple, "RealSense SR300 at the left short end, filming the purple child", kSr300Color,
              kSr300Depth, false);
-  add_camera("camera_yellow", "RealSense SR300 at the left short end, filming the yellow child (or the NAO)",
+  add_camera(camera_yellow, "RealSense SR300 at the left short end, filming the yellow child (or the NAO)",
              kSr300Color, kSr300Depth, false);
-  add_camera("env_camera", "Kinect v2 (qHD) beyond the right short end, looking back over the table", kKinectQhd,
+  add_camera(env_camera, "Kinect v2 (qHD) beyond the right short end, looking back over the table", kKinectQhd,
              kKinectQhd, false);
 
   screen_texture_ = require_id(m, mjOBJ_TEXTURE, "screen");
@@ -500,11 +504,12 @@ void StageModel::index_model() {
     nao_.head_top_site = require_id(m, mjOBJ_SITE, "head_top");
     nao_.l_sole_site = require_id(m, mjOBJ_SITE, "l_sole");
     nao_.r_sole_site = require_id(m, mjOBJ_SITE, "r_sole");
-    add_camera("CameraTop", "NAO V5 top camera (MT9M114, 47.6° vertical FOV)", kNaoCamera, kNaoCamera, true);
-    add_camera("CameraBottom", "NAO V5 bottom camera (MT9M114, 47.6° vertical FOV)", kNaoCamera, kNaoCamera, true);
+    const auto [camera_top, camera_bottom] = kNaoCameraNames;
+    add_camera(camera_top, "NAO V5 top camera (MT9M114, 47.6° vertical FOV)", kNaoCamera, kNaoCamera, true);
+    add_camera(camera_bottom, "NAO V5 bottom camera (MT9M114, 47.6° vertical FOV)", kNaoCamera, kNaoCamera, true);
   }
-  add_camera("top_view", "debug camera 0.9 m straight above the screen (not in the real setup)", kTopView, kTopView,
-             false);
+  add_camera(kTopViewCameraName, "debug camera 0.9 m straight above the screen (not in the real setup)", kTopView,
+             kTopView, false);
 }
 
 void StageModel::place_nao() {

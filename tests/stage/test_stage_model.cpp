@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "freeplay/core/error.hpp"
+#include "freeplay/stage/camera_names.hpp"
 #include "freeplay/stage/stage.hpp"
 
 namespace freeplay::stage {
@@ -25,6 +26,27 @@ TEST(StageModel, SceneKindsListTheirBodiesAndCameras) {
   for (const char* name : {"camera_purple", "camera_yellow", "env_camera", "CameraTop", "CameraBottom"}) {
     EXPECT_NO_THROW(child_robot->camera(name)) << name;
   }
+}
+
+TEST(StageModel, TheCameraNameListsAreTheModelsCameras) {
+  // camera_names.hpp is what the parser, the recorder and the help list: it must name the model's cameras, in order.
+  const auto names_of = [](const StageModel& model) {
+    std::vector<std::string> names;
+    for (const auto& camera : model.cameras()) names.push_back(camera.name);
+    return names;
+  };
+  StageConfig config;
+  std::vector<std::string> room(kRoomCameraNames.begin(), kRoomCameraNames.end());
+  room.emplace_back(kTopViewCameraName);
+  EXPECT_EQ(names_of(*StageModel::create(config)), room);
+  config.scene = SceneKind::child_robot;
+  std::vector<std::string> real = real_camera_names();
+  real.emplace_back(kTopViewCameraName);
+  EXPECT_EQ(names_of(*StageModel::create(config)), real);
+  EXPECT_EQ(real_camera_names(),
+            (std::vector<std::string>{"camera_purple", "camera_yellow", "env_camera", "CameraTop", "CameraBottom"}));
+  EXPECT_TRUE(is_nao_camera("CameraBottom"));
+  EXPECT_FALSE(is_nao_camera("env_camera"));
 }
 
 TEST(StageModel, SensorIntrinsicsAreThePublishedOnes) {

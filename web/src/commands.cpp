@@ -12,6 +12,7 @@
 #include "freeplay/runner/settings.hpp"
 #include "freeplay/sim/sandtray.hpp"
 #include "freeplay/sim/screen.hpp"
+#include "freeplay/stage/camera_names.hpp"
 
 namespace freeplay::web {
 namespace {
@@ -204,7 +205,7 @@ Command parse_command(const std::string& body, const std::vector<std::string>& i
   } else if (c.type == "note") {
     a["text"] = f.text("text");
   } else if (c.type == "camera") {
-    auto names = runner::ScenarioVocabulary{}.cameras;
+    auto names = stage::real_camera_names();
     names.emplace_back("off");
     a["name"] = f.one_of("name", names);
   } else if (c.type == "component") {

@@ -100,7 +100,7 @@ class MotionPlanner {
   virtual PlanResult plan(const PlanRequest& request, Rng& rng) const = 0;
 };
 
-/// Names accepted by `make_planner`, sorted.
+/// Names accepted by `make_planner` (kPlannerNames, planner_settings.hpp), sorted.
 std::vector<std::string> planner_names();
 /// Comma-separated `planner_names()` (for error messages and help texts).
 std::string planner_names_joined();

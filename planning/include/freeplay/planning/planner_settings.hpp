@@ -3,12 +3,19 @@
 // the defaults every front starts from (`PlanRequest`, `PlannerOptions`, `MoveExecutorConfig`, the command-line
 // flags) and `visit`, which lists the keys, ranges and help (core/settings_archive.hpp).
 
+#include <array>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "freeplay/core/settings_archive.hpp"
 
 namespace freeplay::planning {
+
+/// The names `make_planner` (plan.hpp) builds, in the order scenarios list them: header-only, so that the scenario
+/// parser accepts exactly these without linking the planners.
+inline constexpr std::array<std::string_view, 5> kPlannerNames = {"astar", "rrtconnect", "prmstar", "rrtstar",
+                                                                  "bitstar"};
 
 /// Default planning budget (s): wall clock, only anytime planners use it up.
 inline constexpr double kDefaultTimeBudgetS = 1.0;

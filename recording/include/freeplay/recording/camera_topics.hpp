@@ -25,10 +25,9 @@ struct CameraTopics {
 };
 
 /// Topics of a stage camera: camera_purple / camera_yellow (RealSense SR300 driver), env_camera (kinect2_bridge,
-/// qhd), CameraTop / CameraBottom (naoqi_driver's front/bottom cameras); InputError listing them otherwise.
+/// qhd), CameraTop / CameraBottom (naoqi_driver's front/bottom cameras); InputError listing them (the real setup's
+/// cameras, stage::real_camera_names()) otherwise.
 CameraTopics camera_topics(std::string_view camera);
-/// Names camera_topics accepts.
-std::vector<std::string> recordable_cameras();
 
 /// The 12-byte header compressed_depth_image_transport puts before the PNG (codec.h ConfigHeader).
 struct CompressedDepthConfigHeader {

@@ -11,6 +11,7 @@
 
 #include "freeplay/core/settings_archive.hpp"
 #include "freeplay/planning/planner_settings.hpp"
+#include "freeplay/stage/camera_names.hpp"
 #include "freeplay/stage/stage_mode.hpp"
 
 namespace freeplay::runner {
@@ -18,9 +19,8 @@ namespace freeplay::runner {
 /// Names the validator accepts for the open-ended choices (filled from the registries of the linked libraries).
 struct ScenarioVocabulary {
   std::vector<std::string> policies = {"asocial", "social", "idle", "scripted"};  ///< registered play policies
-  std::vector<std::string> planners = {"astar", "rrtconnect", "prmstar", "rrtstar", "bitstar"};  ///< planners
-  std::vector<std::string> cameras = {"camera_purple", "camera_yellow", "env_camera", "CameraTop",
-                                      "CameraBottom"};  ///< stage cameras
+  std::vector<std::string> planners{planning::kPlannerNames.begin(), planning::kPlannerNames.end()};  ///< planners
+  std::vector<std::string> cameras = stage::real_camera_names();  ///< stage cameras of the real setup
   std::vector<std::string> items = {"zebra", "elephant", "ball", "lion", "giraffe", "caravan", "crocodile",
                                     "hippo", "boy", "girl"};  ///< sandtray items (controller `move` targets)
   std::vector<std::string> voices = {"babble", "espeak"};  ///< audio voices (`record.voice`) this binary has
