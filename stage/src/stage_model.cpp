@@ -11,8 +11,8 @@
 #include "freeplay/core/assets.hpp"
 #include "freeplay/core/atomic_file.hpp"
 #include "freeplay/core/error.hpp"
-#include "freeplay/stage/camera_names.hpp"
 #include "freeplay/core/sandtray_links.hpp"
+#include "freeplay/stage/camera_names.hpp"
 
 namespace freeplay::stage {
 namespace {
