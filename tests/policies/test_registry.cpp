@@ -2,6 +2,7 @@
 
 #include "freeplay/core/error.hpp"
 #include "freeplay/policies/play_policy.hpp"
+#include "freeplay/policies/policy_names.hpp"
 
 using namespace freeplay;
 using namespace freeplay::policies;
@@ -12,6 +13,14 @@ TEST(PolicyRegistry, BuiltInPoliciesAreRegistered) {
     EXPECT_NE(std::find(names.begin(), names.end(), expected), names.end()) << expected;
   }
   EXPECT_EQ(make_policy("asocial")->name(), "asocial");
+}
+
+TEST(PolicyRegistry, TheShippedNamesAreTheRegisteredOnes) {
+  EXPECT_EQ(policy_names(), std::vector<std::string>(kPolicyNames.begin(), kPolicyNames.end()));
+  for (const auto& name : policy_names()) EXPECT_TRUE(is_policy_name(name)) << name;
+  EXPECT_FALSE(is_policy_name("telepathic"));
+  EXPECT_FALSE(is_policy_name("python:module:Class"));
+  static_assert(is_policy_name("yoked"));
 }
 
 TEST(PolicyRegistry, UnknownPolicyListsTheRegisteredOnes) {

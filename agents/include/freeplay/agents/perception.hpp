@@ -10,6 +10,7 @@
 #include <optional>
 #include <string_view>
 
+#include "freeplay/agents/item_names.hpp"
 #include "freeplay/core/geometry.hpp"
 #include "freeplay/sim/screen.hpp"
 
@@ -17,9 +18,6 @@ namespace freeplay::agents {
 
 using sim::PaletteColour;
 
-/// Items of the free-play set, in the order of the real play policy's ITEMS list.
-inline constexpr std::array<std::string_view, 10> kItemNames = {"zebra",   "elephant",  "ball", "lion", "giraffe",
-                                                                 "caravan", "crocodile", "hippo", "boy", "girl"};
 /// Most items a perception can hold.
 inline constexpr std::size_t kMaxSeenItems = 16;
 /// Most zones a perception can hold.

@@ -9,8 +9,10 @@
 #include <string>
 #include <vector>
 
+#include "freeplay/agents/item_names.hpp"
 #include "freeplay/core/settings_archive.hpp"
 #include "freeplay/planning/planner_settings.hpp"
+#include "freeplay/policies/policy_names.hpp"
 #include "freeplay/stage/camera_names.hpp"
 #include "freeplay/stage/stage_mode.hpp"
 
@@ -18,11 +20,10 @@ namespace freeplay::runner {
 
 /// Names the validator accepts for the open-ended choices (filled from the registries of the linked libraries).
 struct ScenarioVocabulary {
-  std::vector<std::string> policies = {"asocial", "social", "idle", "scripted"};  ///< registered play policies
+  std::vector<std::string> policies{policies::kPolicyNames.begin(), policies::kPolicyNames.end()};  ///< play policies
   std::vector<std::string> planners{planning::kPlannerNames.begin(), planning::kPlannerNames.end()};  ///< planners
   std::vector<std::string> cameras = stage::real_camera_names();  ///< stage cameras of the real setup
-  std::vector<std::string> items = {"zebra", "elephant", "ball", "lion", "giraffe", "caravan", "crocodile",
-                                    "hippo", "boy", "girl"};  ///< sandtray items (controller `move` targets)
+  std::vector<std::string> items{agents::kItemNames.begin(), agents::kItemNames.end()};  ///< sandtray items
   std::vector<std::string> voices = {"babble", "espeak"};  ///< audio voices (`record.voice`) this binary has
 
   /// Same names in the same order.
