@@ -52,7 +52,7 @@ TEST(Scenario, WrongTypeAndOutOfRange) {
 TEST(Scenario, UnknownEnumListsAllowedValues) {
   const auto msg = error_of("name: x\ncondition: child-robot\nrobot: {policy: friendly}\n");
   EXPECT_NE(msg.find("unknown value 'friendly'"), std::string::npos) << msg;
-  EXPECT_NE(msg.find("asocial, social, idle, scripted"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("asocial, idle, scripted, social, yoked"), std::string::npos) << msg;
 }
 
 TEST(Scenario, MissingRequiredKey) {
