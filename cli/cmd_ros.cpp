@@ -83,7 +83,7 @@ void serve_command(const ServeCommandOptions& o) {
   std::signal(SIGINT, on_ros_interrupt);
   std::signal(SIGTERM, on_ros_interrupt);
   spdlog::info("serving '{}' (seed {}, rate {}×, robot {}) on the ROS graph", scenario.name, seed, o.rate, o.robot);
-  ros_live::ServeTiming timing;
+  runner::PacingTiming timing;
   runner::EpisodeResult result;
   try {
     result = ros_live::serve(scenario, seed, options, g_ros_stop, &timing);
@@ -95,10 +95,7 @@ void serve_command(const ServeCommandOptions& o) {
   nlohmann::json summary{{"aborted", result.aborted},
                          {"duration_s", result.duration_s},
                          {"simulated_s", result.simulated_s},
-                         {"timing", {{"ticks", timing.ticks},
-                                     {"p50_late_ms", timing.p50_late_ms},
-                                     {"p99_late_ms", timing.p99_late_ms},
-                                     {"max_late_ms", timing.max_late_ms}}}};
+                         {"timing", runner::timing_json(timing)}};
   if (!result.aborted) {
     summary["ended_by"] = result.record["ended_by"];
     summary["metrics"] = result.record["metrics"];

@@ -135,10 +135,12 @@ void run_web_serve(const std::string& file, const std::vector<std::string>& over
                          {"duration_s", report.result.duration_s},
                          {"simulated_s", report.result.simulated_s},
                          {"ticks", report.ticks},
-                         {"web", {{"frames_sent", report.server.frames_sent},
-                                  {"frames_dropped", report.server.frames_dropped},
-                                  {"requests", report.server.requests},
-                                  {"refused", report.server.refused}}}};
+                         {"timing", runner::timing_json(report.timing)},
+                         {"web",
+                          {{"frames_sent", report.server.frames_sent},
+                           {"frames_dropped", report.server.frames_dropped},
+                           {"requests", report.server.requests},
+                           {"refused", report.server.refused}}}};
   std::cout << summary.dump() << std::endl;
   if (report.result.aborted) fail_with(130);
 #else

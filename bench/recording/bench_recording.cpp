@@ -47,7 +47,9 @@ void run(benchmark::State& state, bool record) {
     };
     if (!record) observers.push_back(std::make_unique<Idle>());
     const std::atomic<bool> stop{false};
-    const auto result = runner::run_episode(s, 11, models(), stop, observers, {&s, "bench-0000", 11});
+    const auto result =
+        runner::run_episode({.scenario = s, .seed = 11, .models = models(), .stop = stop, .id = "bench-0000"},
+                            runner::observed_by(observers));
     simulated += result.simulated_s;
     if (record) bytes += std::filesystem::file_size(dir / "sessions/bench-0000/freeplay.bag");
   }
@@ -114,7 +116,9 @@ void record_demo(benchmark::State& state, double rate_hz) {
     observers.push_back(std::move(recorder));
     observers.push_back(std::make_unique<runner::CameraRig>(s, runner::renderer_options(s.rendering), sinks));
     const std::atomic<bool> stop{false};
-    const auto result = runner::run_episode(s, 11, models(), stop, observers, {&s, "demo-0000", 11});
+    const auto result =
+        runner::run_episode({.scenario = s, .seed = 11, .models = models(), .stop = stop, .id = "demo-0000"},
+                            runner::observed_by(observers));
     simulated += result.simulated_s;
     bytes += std::filesystem::file_size(dir / "sessions/demo-0000/freeplay.bag");
   }

@@ -26,7 +26,7 @@ void run_scenario(benchmark::State& state, const char* file) {
   std::uint64_t seed = 1;
   for (auto _ : state) {
     const auto start = std::chrono::steady_clock::now();
-    const auto result = run_episode(scenario, seed++, models(), stop);
+    const auto result = run_episode({.scenario = scenario, .seed = seed++, .models = models(), .stop = stop});
     wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     simulated += result.simulated_s;
     freeplay += result.duration_s;
@@ -68,7 +68,8 @@ void run_with_cameras(benchmark::State& state, const std::string& cameras) {
     observers.push_back(std::make_unique<CameraRig>(scenario, renderer_options(scenario.rendering),
                                                     std::vector<FrameSink*>{&sink}));
     const auto start = std::chrono::steady_clock::now();
-    const auto result = run_episode(scenario, seed, models(), stop, observers, {&scenario, "bench", seed});
+    const auto result = run_episode(
+        {.scenario = scenario, .seed = seed, .models = models(), .stop = stop, .id = "bench"}, observed_by(observers));
     ++seed;
     wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     simulated += result.simulated_s;

@@ -201,8 +201,8 @@ class EnvEpisode {
     try {
       runner::EpisodeObservers observers;
       observers.push_back(std::make_unique<Observer>(*this));
-      runner::EpisodeInfo info{&scenario_, scenario_.name + "-env", seed};
-      result = runner::run_episode(scenario_, seed, runner::SharedModels::shipped(), stop_, observers, info);
+      result = runner::run_episode({.scenario = scenario_, .seed = seed, .stop = stop_, .id = scenario_.name + "-env"},
+                                   runner::observed_by(observers));
     } catch (...) {
       error = std::current_exception();
     }

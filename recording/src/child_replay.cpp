@@ -237,10 +237,11 @@ runner::Scenario replay_scenario(const RecordedChildren& recording, const std::s
 runner::EpisodeResult replay_children(const RecordedChildren& recording, const runner::Scenario& scenario,
                                       const runner::SharedModels& models) {
   ReplayedChildren source(recording);
-  runner::EpisodeObservers no_observers;
-  const runner::EpisodeInfo info{&scenario, recording.episode_id, recording.seed};
-  const std::atomic<bool> stop{false};
-  auto result = runner::run_episode(scenario, recording.seed, models, stop, no_observers, info, &source);
+  auto result = runner::run_episode({.scenario = scenario,
+                                     .seed = recording.seed,
+                                     .models = models,
+                                     .id = recording.episode_id,
+                                     .children = &source});
   auto& record = result.record;
   if (record.contains("metrics")) record["metrics"].erase("label_share");
   if (record.contains("children")) {

@@ -3,26 +3,23 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
-#include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <map>
-#include <string_view>
+#include <optional>
 #include <set>
 #include <stdexcept>
-#include <thread>
+#include <string_view>
 
 #include "freeplay/core/rng.hpp"
 #include "freeplay/planning/move_executor.hpp"
 #include "freeplay/planning/plan.hpp"
 #include "freeplay/recording/camera_topics.hpp"
 #include "freeplay/ros/graph.hpp"
+#include "freeplay/ros/graph_topics.hpp"
+#include "freeplay/ros/localisation_node.hpp"
 #include "freeplay/runner/camera_rig.hpp"
 #include "freeplay/runner/sandtray_world.hpp"
 #include "freeplay/runner/scenario.hpp"
 #include "freeplay/sim/screen.hpp"
-#include "freeplay/ros/graph_topics.hpp"
-#include "freeplay/ros/localisation_node.hpp"
 
 namespace freeplay::ros_live {
 
@@ -38,13 +35,12 @@ struct Live {
 class GraphRobot;
 void serve_plans(GraphRobot& robot, const sim::Sandtray& tray);
 
-/// Publishes every tick of the episode on the graph, paced to the wall clock.
+/// Publishes every tick of the episode on the graph (the live episode paces the ticks).
 class LivePublisher final : public runner::EpisodeObserver {
  public:
-  LivePublisher(Live& live, double rate, GraphTopics topics) : live_(live), rate_(rate), topics_(std::move(topics)) {}
+  LivePublisher(Live& live, GraphTopics topics) : live_(live), topics_(std::move(topics)) {}
 
   void observe(const runner::EpisodeSnapshot& s) override {
-    const auto due = pace(s.t);
     auto& g = *live_.graph;
     g.maintain();
     const double stamp = live_.stamp(s.t);
@@ -52,7 +48,6 @@ class LivePublisher final : public runner::EpisodeObserver {
     const bool publish_reach = reach_ && (localisation_ == nullptr || !localisation_->publishes_arm_reach());
     topics_.set_arm_reach(publish_reach ? reach_ : std::nullopt);
     for (const auto& m : topics_.tick(s)) g.publish(m);
-    lateness_ms_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - due).count());
     last_t_ = s.t;
     for (const auto& e : s.new_events) publish_event(s.t, e);
     if (robot_ != nullptr) serve_plans(*robot_, *s.tray);
@@ -88,33 +83,7 @@ class LivePublisher final : public runner::EpisodeObserver {
   /// Sets the arm-reach disc published as the `arm_reach` frame.
   void set_reach(const runner::ReachDisc& reach) { reach_ = reach; }
 
-  /// Lateness percentiles of the ticks published so far.
-  ServeTiming timing() const {
-    ServeTiming out;
-    out.ticks = lateness_ms_.size();
-    if (lateness_ms_.empty()) return out;
-    auto sorted = lateness_ms_;
-    std::sort(sorted.begin(), sorted.end());
-    auto at = [&](double q) { return sorted[static_cast<std::size_t>(q * static_cast<double>(sorted.size() - 1))]; };
-    out.p50_late_ms = at(0.5);
-    out.p99_late_ms = at(0.99);
-    out.max_late_ms = sorted.back();
-    return out;
-  }
-
  private:
-  // Sleeps until tick `t` is due on the wall clock; returns when it was due.
-  std::chrono::steady_clock::time_point pace(double t) {
-    using clock = std::chrono::steady_clock;
-    if (!start_) {
-      start_ = clock::now();
-      t0_ = t;
-    }
-    const auto due = *start_ + std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>((t - t0_) / rate_));
-    std::this_thread::sleep_until(due);
-    return due;
-  }
-
   void publish_event(double t, const Event& e) {
     for (const auto& m : topics_.event(t, e)) {
       // A stage another node signalled is not signalled again (the game never echoes a signal).
@@ -125,15 +94,11 @@ class LivePublisher final : public runner::EpisodeObserver {
   }
 
   Live& live_;
-  double rate_;
   GraphTopics topics_;
   std::optional<runner::ReachDisc> reach_;
   GraphRobot* robot_ = nullptr;
   ServedLocalisation* localisation_ = nullptr;
   double last_t_ = 0.0;
-  std::optional<std::chrono::steady_clock::time_point> start_;
-  double t0_ = 0.0;
-  std::vector<double> lateness_ms_;
   std::set<std::string> received_;  // stage signals received from the graph, not to be echoed
 };
 
@@ -305,27 +270,15 @@ class GraphRobot final : public runner::RobotActionSource {
 
 void serve_plans(GraphRobot& robot, const sim::Sandtray& tray) { robot.serve_plans(tray); }
 
-/// Hands every tick to the publisher (the episode owns its observers; the publisher outlives the episode).
-class PublisherRef final : public runner::EpisodeObserver {
- public:
-  explicit PublisherRef(runner::EpisodeObserver& publisher) : publisher_(publisher) {}
-  void observe(const runner::EpisodeSnapshot& snapshot) override { publisher_.observe(snapshot); }
-
- private:
-  runner::EpisodeObserver& publisher_;
-};
-
 }  // namespace
 
 struct GraphSide::Impl {
   Impl(const runner::Scenario& scenario, std::uint64_t seed, const ServeOptions& options)
       : graph(make_graph(scenario, options)),
         live{graph.get(), ros_graph::wall_now()},
-        publisher(live, options.rate,
-                  GraphTopics(seed, static_cast<std::uint64_t>(std::llround(live.stamp_origin * 1e9)),
-                              !options.external_robot, scenario.robot.arm_reach_m)),
-        cameras(live, scenario.recording.jpeg_quality),
-        publisher_ref(publisher) {
+        publisher(live, GraphTopics(seed, static_cast<std::uint64_t>(std::llround(live.stamp_origin * 1e9)),
+                                    !options.external_robot, scenario.robot.arm_reach_m)),
+        cameras(live, scenario.recording.jpeg_quality) {
     for (const auto& declaration : publisher.topics().declarations()) graph->advertise(declaration);
     const bool child_robot = scenario.condition == runner::Condition::ChildRobot;
     if (child_robot) {
@@ -355,7 +308,6 @@ struct GraphSide::Impl {
   Live live;
   LivePublisher publisher;
   LiveCameras cameras;
-  PublisherRef publisher_ref;
   std::unique_ptr<ServedLocalisation> localisation;
   std::unique_ptr<GraphRobot> robot;
   std::unique_ptr<GraphSignals> signals;
@@ -366,7 +318,7 @@ GraphSide::GraphSide(const runner::Scenario& scenario, std::uint64_t seed, const
 
 GraphSide::~GraphSide() = default;
 
-runner::EpisodeObserver& GraphSide::publisher() { return impl_->publisher_ref; }
+runner::EpisodeObserver& GraphSide::publisher() { return impl_->publisher; }
 
 runner::FrameSink& GraphSide::cameras() { return impl_->cameras; }
 
@@ -374,21 +326,20 @@ runner::SignalSource& GraphSide::signals() { return *impl_->signals; }
 
 runner::RobotActionSource* GraphSide::robot() { return impl_->robot.get(); }
 
-ServeTiming GraphSide::timing() const { return impl_->publisher.timing(); }
-
 runner::EpisodeResult serve(const runner::Scenario& scenario, std::uint64_t seed, const ServeOptions& options,
-                            const std::atomic<bool>& stop, ServeTiming* timing) {
+                            const std::atomic<bool>& stop, runner::PacingTiming* timing) {
   GraphSide side(scenario, seed, options);
-  runner::EpisodeObservers observers;
-  observers.push_back(std::make_unique<PublisherRef>(side.publisher()));
+  runner::LiveEpisode live(options.rate, stop);
+  live.attach(side.publisher());
+  std::unique_ptr<runner::CameraRig> rig;
   if (!scenario.cameras.empty()) {  // rendered after the tick's topics went out, at each camera's own rate
-    observers.push_back(std::make_unique<runner::CameraRig>(
-        scenario, runner::renderer_options(scenario.rendering), std::vector<runner::FrameSink*>{&side.cameras()}));
+    rig = std::make_unique<runner::CameraRig>(scenario, runner::renderer_options(scenario.rendering),
+                                              std::vector<runner::FrameSink*>{&side.cameras()});
+    live.attach(*rig);
   }
-  const runner::EpisodeInfo info{&scenario, "serve", seed};
-  auto result = runner::run_episode(scenario, seed, runner::SharedModels::shipped(), stop, observers, info, nullptr,
-                                    side.robot(), &side.signals());
-  if (timing != nullptr) *timing = side.timing();
+  auto result =
+      live.run({.scenario = scenario, .seed = seed, .id = "serve", .robot = side.robot(), .signals = &side.signals()});
+  if (timing != nullptr) *timing = live.timing();
   return result;
 }
 

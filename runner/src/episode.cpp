@@ -38,16 +38,16 @@ class Episode {
                    seeds_.stream("planner"), BadMove::Throw);
   }
 
-  EpisodeResult run(const std::atomic<bool>& stop, EpisodeObservers* observers = nullptr,
-                    const EpisodeInfo* info = nullptr, ChildActionSource* child_source = nullptr,
-                    RobotActionSource* robot_source = nullptr, SignalSource* signals = nullptr) {
+  EpisodeResult run(const EpisodeInputs& inputs, const EpisodeOutputs& outputs) {
     EpisodeResult result;
-    signals_ = signals;
-    world_.set_child_source(child_source);
-    robot_source_ = robot_source;
-    observers_ = observers != nullptr && !observers->empty() ? observers : nullptr;
+    const auto& stop = inputs.stop;
+    signals_ = inputs.signals;
+    world_.set_child_source(inputs.children);
+    robot_source_ = inputs.robot;
+    observers_ = outputs.observers.empty() ? nullptr : &outputs.observers;
     if (observers_ != nullptr) {
-      for (auto& o : *observers_) o->begin(*info);
+      const auto info = inputs.info();
+      for (auto* o : *observers_) o->begin(info);
     }
     const auto wall_start = std::chrono::steady_clock::now();
     auto& tray = world_.tray();
@@ -116,7 +116,7 @@ class Episode {
     result.record["simulated_s"] = result.simulated_s;
     result.record["wall_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     if (observers_ != nullptr) {
-      for (auto& o : *observers_) o->end(result);
+      for (auto* o : *observers_) o->end(result);
     }
     result.events = std::move(world_.log());
     return result;
@@ -170,7 +170,7 @@ class Episode {
 
   EpisodeResult& aborted(EpisodeResult& result) {
     if (observers_ != nullptr) {
-      for (auto& o : *observers_) o->abort();
+      for (auto* o : *observers_) o->abort();
     }
     result.aborted = true;
     return result;
@@ -210,7 +210,7 @@ class Episode {
     const auto& events = world_.log().events();
     snapshot.new_events = std::span<const Event>(events.data() + notified_events_, events.size() - notified_events_);
     notified_events_ = events.size();
-    for (auto& o : *observers_) o->observe(snapshot);
+    for (auto* o : *observers_) o->observe(snapshot);
   }
 
   const Scenario& scenario_;
@@ -218,7 +218,7 @@ class Episode {
   detail::SimWorld world_;
   std::optional<RobotSide> robot_;
   RobotActionSource* robot_source_ = nullptr;  // replaces the robot's policy and executor when set
-  EpisodeObservers* observers_ = nullptr;
+  const std::vector<EpisodeObserver*>* observers_ = nullptr;  // null: none (idle stages then take one step)
   SignalSource* signals_ = nullptr;  // signals from outside (a live graph), polled every tick
   int jump_to_ = 0;                  // the latest stage a received signal started
   std::string stage_ = "greeting";
@@ -227,17 +227,15 @@ class Episode {
 
 }  // namespace
 
-EpisodeResult run_episode(const Scenario& scenario, std::uint64_t seed, const SharedModels& models,
-                          const std::atomic<bool>& stop, int episode_index) {
-  Episode episode(scenario, seed, models, episode_index);
-  return episode.run(stop);
+EpisodeOutputs observed_by(const EpisodeObservers& observers) {
+  EpisodeOutputs out;
+  for (const auto& o : observers) out.observers.push_back(o.get());
+  return out;
 }
 
-EpisodeResult run_episode(const Scenario& scenario, std::uint64_t seed, const SharedModels& models,
-                          const std::atomic<bool>& stop, EpisodeObservers& observers, const EpisodeInfo& info,
-                          ChildActionSource* children, RobotActionSource* robot, SignalSource* signals) {
-  Episode episode(scenario, seed, models, info.episode_index);
-  return episode.run(stop, &observers, &info, children, robot, signals);
+EpisodeResult run_episode(const EpisodeInputs& inputs, const EpisodeOutputs& outputs) {
+  Episode episode(inputs.scenario, inputs.seed, inputs.models, inputs.episode_index);
+  return episode.run(inputs, outputs);
 }
 
 EpisodeFunction episode_function(const SharedModels& models, ObserverFactory observers, std::filesystem::path run_dir) {
@@ -246,9 +244,13 @@ EpisodeFunction episode_function(const SharedModels& models, ObserverFactory obs
     if (task.variant->scenario.kind == ScenarioKind::controller) return run_controller_task(task, models, stop);
     const auto id = RunFolder::episode_file_id(task.variant->id, task.index);
     EpisodeObservers attached = observers ? observers(task.variant->scenario, run_dir) : EpisodeObservers{};
-    const EpisodeInfo info{&task.variant->scenario, id, task.seed, task.index};
-    auto result = attached.empty() ? run_episode(task.variant->scenario, task.seed, models, stop, task.index)
-                                   : run_episode(task.variant->scenario, task.seed, models, stop, attached, info);
+    auto result = run_episode({.scenario = task.variant->scenario,
+                               .seed = task.seed,
+                               .models = models,
+                               .stop = stop,
+                               .id = id,
+                               .episode_index = task.index},
+                              observed_by(attached));
     EpisodeOutput out;
     if (result.aborted) return out;
     out.record = std::move(result.record);

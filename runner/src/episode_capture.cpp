@@ -84,7 +84,8 @@ CaptureResult capture_episode_moment(const Scenario& scenario, std::uint64_t see
   EpisodeObservers observers;
   observers.push_back(std::make_unique<MomentObserver>(moment, capture, stop));
   const auto* watcher = static_cast<const MomentObserver*>(observers.back().get());
-  const auto result = run_episode(scenario, seed, models, stop, observers, {&scenario, "capture", seed});
+  const auto result = run_episode({.scenario = scenario, .seed = seed, .models = models, .stop = stop, .id = "capture"},
+                                  observed_by(observers));
   if (!watcher->captured()) {
     const auto ended_by = result.record.value("ended_by", std::string());
     throw InputError(fmt::format("the episode ended at {:.1f} s of free play ({})", result.duration_s,

@@ -28,7 +28,8 @@ std::vector<agents::SessionResult> run_population(const Scenario& scenario, int 
   const std::atomic<bool> never_stop{false};
   const auto worker = [&] {
     for (int i = next++; i < episodes; i = next++) {
-      const EpisodeResult r = run_episode(scenario, episode_seed(scenario.seed, i), models, never_stop);
+      const EpisodeResult r = run_episode(
+          {.scenario = scenario, .seed = episode_seed(scenario.seed, i), .models = models, .stop = never_stop});
       out[static_cast<std::size_t>(i)] = session_result(r);
       const int finished = ++done;
       if (progress) {

@@ -50,7 +50,8 @@ Recorded record(const std::string& name, const runner::Scenario& s, std::uint64_
   observers.push_back(std::make_unique<BagRecorder>(dir / "sessions", s.recording));
   const std::atomic<bool> stop{false};
   Recorded out;
-  out.result = runner::run_episode(s, seed, runner::SharedModels::shipped(), stop, observers, {&s, "tiny-0000", seed});
+  out.result = runner::run_episode({.scenario = s, .seed = seed, .stop = stop, .id = "tiny-0000"},
+                                   runner::observed_by(observers));
   out.purple = read_wav(dir / "sessions" / "tiny-0000" / "audio" / "freeplay_camera_purple_audio.wav");
   std::filesystem::remove_all(dir);
   return out;

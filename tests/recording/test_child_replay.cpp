@@ -41,7 +41,9 @@ Session record(const std::string& condition, std::uint64_t seed) {
   observers.push_back(std::make_unique<BagRecorder>(root / "sessions", scenario.recording));
   const std::atomic<bool> stop{false};
   Session s;
-  s.result = runner::run_episode(scenario, seed, models(), stop, observers, {&scenario, "replayed-0000", seed});
+  s.result =
+      runner::run_episode({.scenario = scenario, .seed = seed, .models = models(), .stop = stop, .id = "replayed-0000"},
+                          runner::observed_by(observers));
   s.dir = root / "sessions" / "replayed-0000";
   return s;
 }

@@ -120,7 +120,9 @@ Recorded record_episode(const std::string& name, const std::string& condition, c
   observers.push_back(std::move(recorder));
   observers.push_back(std::move(cameras));
   const std::atomic<bool> stop{false};
-  out.result = runner::run_episode(scenario, seed, models(), stop, observers, {&scenario, "tiny-0000", seed});
+  out.result =
+      runner::run_episode({.scenario = scenario, .seed = seed, .models = models(), .stop = stop, .id = "tiny-0000"},
+                          runner::observed_by(observers));
   out.items = cams->items;
   out.frames = cams->frames;
   return out;
@@ -561,7 +563,9 @@ TEST(BagRecorder, CtrlCClosesTheBagAndMarksTheSessionIncomplete) {
   interrupter->stop = &stop;
   interrupter->ticks = 60;  // mid free play
   observers.push_back(std::move(interrupter));
-  const auto result = runner::run_episode(scenario, 7, models(), stop, observers, {&scenario, "tiny-0000", 7});
+  const auto result =
+      runner::run_episode({.scenario = scenario, .seed = 7, .models = models(), .stop = stop, .id = "tiny-0000"},
+                          runner::observed_by(observers));
   EXPECT_TRUE(result.aborted);
   const auto session = dir / "sessions" / "tiny-0000";
   ASSERT_TRUE(std::filesystem::exists(session / "freeplay.bag"));
@@ -587,7 +591,8 @@ TEST(BagRecorder, AKilledRecordingIsReindexable) {
   interrupter->copy_from = dir / "sessions" / "tiny-0000" / "freeplay.bag.active";
   interrupter->copy_to = dir / "killed.bag";
   observers.push_back(std::move(interrupter));
-  runner::run_episode(scenario, 7, models(), stop, observers, {&scenario, "tiny-0000", 7});
+  runner::run_episode({.scenario = scenario, .seed = 7, .models = models(), .stop = stop, .id = "tiny-0000"},
+                      runner::observed_by(observers));
   // The copy is what a killed process leaves: no index. Our reader says to reindex.
   try {
     read_session(dir / "killed.bag");

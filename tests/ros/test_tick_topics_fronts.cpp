@@ -126,7 +126,8 @@ TEST(TickTopicsFronts, TheBagTheLiveGraphAndFoxgloveCarryTheSameMessagesStampsAn
   const Fronts& out = *fronts;
   observers.push_back(std::move(fronts));
   const std::atomic<bool> stop{false};
-  runner::run_episode(scenario, 11, runner::SharedModels::shipped(), stop, observers, {&scenario, "fronts-0000", 11});
+  runner::run_episode({.scenario = scenario, .seed = 11, .stop = stop, .id = "fronts-0000"},
+                      runner::observed_by(observers));
   const auto bag = read_bag(dir / "sessions" / "fronts-0000" / "freeplay.bag");
 
   // The bag and the live graph: the same bytes (header stamps included) in the same order on every shared stream.

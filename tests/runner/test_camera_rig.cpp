@@ -102,12 +102,13 @@ TEST(CameraRig, FramesArriveAtTheirRatesWithoutChangingTheEpisode) {
                                 "[{name: env_camera, rate_hz: 5, width: 160, height: 90, depth: true},"
                                 " {name: camera_purple, rate_hz: 2, width: 96, height: 54}]");
   const std::atomic<bool> stop{false};
-  const auto plain = run_episode(s, 11, models(), stop);
+  const auto plain = run_episode({.scenario = s, .seed = 11, .models = models(), .stop = stop});
   CollectingSink sink;
   EpisodeObservers observers;
   observers.push_back(std::make_unique<CameraRig>(s, osmesa(), std::vector<FrameSink*>{&sink}));
   const auto* rig = static_cast<const CameraRig*>(observers.back().get());
-  const auto filmed = run_episode(s, 11, models(), stop, observers, {&s, "t-0", 11});
+  const auto filmed =
+      run_episode({.scenario = s, .seed = 11, .models = models(), .stop = stop, .id = "t-0"}, observed_by(observers));
   EXPECT_EQ(plain.events.to_jsonl(), filmed.events.to_jsonl()) << "rendering never changes the episode";
   EXPECT_DOUBLE_EQ(plain.simulated_s, filmed.simulated_s);
 
@@ -151,7 +152,7 @@ TEST(CameraRig, DepthIsMetricAtTheScreen) {
   EpisodeObservers observers;
   observers.push_back(std::make_unique<CameraRig>(s, osmesa(), std::vector<FrameSink*>{&sink}));
   const std::atomic<bool> stop{false};
-  run_episode(s, 3, models(), stop, observers, {&s, "t-0", 3});
+  run_episode({.scenario = s, .seed = 3, .models = models(), .stop = stop, .id = "t-0"}, observed_by(observers));
   ASSERT_FALSE(sink.frames.empty());
   const KeptFrame& f = sink.frames.front();  // greeting: blank screen, hands at rest
   // The screen centre seen by the camera: its planar depth is its z in the optical frame.
@@ -227,7 +228,8 @@ TEST(VideoFileSink, WritesOneMp4PerVideoCameraWithEveryFrame) {
   observers.push_back(std::make_unique<CameraRig>(s, osmesa(), std::vector<FrameSink*>{videos.get(), &counted}));
   observers.push_back(std::move(videos));
   const std::atomic<bool> stop{false};
-  const auto result = run_episode(s, 2, models(), stop, observers, {&s, "t-0003", 2});
+  const auto result =
+      run_episode({.scenario = s, .seed = 2, .models = models(), .stop = stop, .id = "t-0003"}, observed_by(observers));
   const auto path = dir / "videos" / "t-0003" / "env_camera.mp4";
   ASSERT_TRUE(std::filesystem::exists(path));
   EXPECT_FALSE(std::filesystem::exists(dir / "videos" / "t-0003" / "env_camera.partial.mp4"));
@@ -255,7 +257,8 @@ TEST(VideoFileSink, AnAbortedEpisodeLeavesNoVideo) {
   observers.push_back(std::make_unique<CameraRig>(s, osmesa(), std::vector<FrameSink*>{videos.get()}));
   observers.push_back(std::move(videos));
   observers.push_back(std::make_unique<StopAfter>(stop, 30));
-  const auto result = run_episode(s, 2, models(), stop, observers, {&s, "t-0", 2});
+  const auto result =
+      run_episode({.scenario = s, .seed = 2, .models = models(), .stop = stop, .id = "t-0"}, observed_by(observers));
   EXPECT_TRUE(result.aborted);
   for (const auto& entry : std::filesystem::recursive_directory_iterator(dir)) {
     EXPECT_FALSE(entry.is_regular_file()) << "left behind: " << entry.path();

@@ -29,19 +29,20 @@ TEST(Episode, SameSeedGivesAnIdenticalEventLog) {
   const std::atomic<bool> stop{false};
   for (const auto* condition : {"child-child", "child-robot"}) {
     const auto s = scenario(condition);
-    const auto a = run_episode(s, 11, models(), stop);
-    const auto b = run_episode(s, 11, models(), stop);
+    const auto a = run_episode({.scenario = s, .seed = 11, .models = models(), .stop = stop});
+    const auto b = run_episode({.scenario = s, .seed = 11, .models = models(), .stop = stop});
     ASSERT_GT(a.events.size(), 20u) << condition;
     EXPECT_EQ(a.events.to_jsonl(), b.events.to_jsonl()) << condition;
     EXPECT_EQ(agents::to_pinsoro_yaml(a.annotations), agents::to_pinsoro_yaml(b.annotations));
-    const auto c = run_episode(s, 12, models(), stop);
+    const auto c = run_episode({.scenario = s, .seed = 12, .models = models(), .stop = stop});
     EXPECT_NE(a.events.hash(), c.events.hash()) << condition;
   }
 }
 
 TEST(Episode, ChildRobotEpisodeFollowsTheProtocolAndRecordsMetrics) {
   const std::atomic<bool> stop{false};
-  const auto r = run_episode(scenario("child-robot", "asocial", 300), 5, models(), stop);
+  const auto r =
+      run_episode({.scenario = scenario("child-robot", "asocial", 300), .seed = 5, .models = models(), .stop = stop});
   std::vector<std::string> stages;
   int moves = 0;
   for (const auto& e : r.events.events()) {
@@ -66,7 +67,8 @@ TEST(Episode, TheSocialPolicyNeverGrabsAnItemAChildHolds) {
   const std::atomic<bool> stop{false};
   int robot_grabs = 0;
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
-    const auto r = run_episode(scenario("child-robot", "social", 400), seed, models(), stop);
+    const auto r = run_episode(
+        {.scenario = scenario("child-robot", "social", 400), .seed = seed, .models = models(), .stop = stop});
     for (const auto& e : r.events.events()) {
       if (e.type != "item_grabbed" || e.data.value("holder", "") != "robot") continue;
       ++robot_grabs;
@@ -78,7 +80,7 @@ TEST(Episode, TheSocialPolicyNeverGrabsAnItemAChildHolds) {
 
 TEST(Episode, StopFlagAbortsAnEpisode) {
   const std::atomic<bool> stop{true};
-  EXPECT_TRUE(run_episode(scenario("child-child"), 1, models(), stop).aborted);
+  EXPECT_TRUE(run_episode({.scenario = scenario("child-child"), .seed = 1, .models = models(), .stop = stop}).aborted);
 }
 
 TEST(Episode, OneAndTwoWorkersGiveIdenticalRunFolders) {

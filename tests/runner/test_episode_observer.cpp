@@ -57,11 +57,12 @@ TEST(EpisodeObserver, SeesEveryTickOfEveryStageWithoutChangingTheEpisode) {
   const std::atomic<bool> stop{false};
   for (const auto* condition : {"child-child", "child-robot"}) {
     const auto s = short_scenario(condition);
-    const auto plain = run_episode(s, 5, models(), stop);
+    const auto plain = run_episode({.scenario = s, .seed = 5, .models = models(), .stop = stop});
     EpisodeObservers observers;
     observers.push_back(std::make_unique<RecordingObserver>());
     auto* seen = static_cast<RecordingObserver*>(observers.back().get());
-    const auto observed = run_episode(s, 5, models(), stop, observers, {&s, "t-0", 5});
+    const auto observed =
+        run_episode({.scenario = s, .seed = 5, .models = models(), .stop = stop, .id = "t-0"}, observed_by(observers));
     EXPECT_EQ(plain.events.to_jsonl(), observed.events.to_jsonl()) << condition;
     EXPECT_EQ(observed.record.value("observed", false), true);
     EXPECT_EQ(seen->begun, 1);
@@ -88,7 +89,8 @@ TEST(EpisodeObserver, IsToldWhenTheEpisodeStops) {
   EpisodeObservers observers;
   observers.push_back(std::make_unique<RecordingObserver>());
   auto* seen = static_cast<RecordingObserver*>(observers.back().get());
-  const auto result = run_episode(s, 5, models(), stop, observers, {&s, "t-0", 5});
+  const auto result =
+      run_episode({.scenario = s, .seed = 5, .models = models(), .stop = stop, .id = "t-0"}, observed_by(observers));
   EXPECT_TRUE(result.aborted);
   EXPECT_EQ(seen->aborted, 1);
   EXPECT_EQ(seen->ended, 0);

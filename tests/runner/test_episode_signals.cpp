@@ -46,8 +46,7 @@ TEST(EpisodeSignals, StageSignalsMoveTheProtocolOnAndGameSignalsReachTheGame) {
   ScriptedSignals signals({{5, sim::Signal::StartFreeplay}, {25, sim::Signal::ItemsToStash},
                            {35, sim::Signal::BlankInterface}});
   const std::atomic<bool> stop{false};
-  EpisodeObservers none;
-  const auto r = run_episode(s, 3, SharedModels::shipped(), stop, none, {&s, "signals", 3}, nullptr, nullptr, &signals);
+  const auto r = run_episode({.scenario = s, .seed = 3, .stop = stop, .id = "signals", .signals = &signals});
   std::vector<std::string> stages;
   std::vector<std::string> received;
   bool stashed = false;
@@ -71,9 +70,7 @@ TEST(EpisodeSignals, WithoutSignalsTheEpisodeIsUnchanged) {
   const auto s = long_greeting();
   ScriptedSignals silent({});
   const std::atomic<bool> stop{false};
-  EpisodeObservers none;
-  const auto with_source =
-      run_episode(s, 4, SharedModels::shipped(), stop, none, {&s, "signals", 4}, nullptr, nullptr, &silent);
-  const auto plain = run_episode(s, 4, SharedModels::shipped(), stop);
+  const auto with_source = run_episode({.scenario = s, .seed = 4, .stop = stop, .id = "signals", .signals = &silent});
+  const auto plain = run_episode({.scenario = s, .seed = 4, .stop = stop});
   EXPECT_EQ(with_source.events.to_jsonl(), plain.events.to_jsonl());
 }

@@ -64,7 +64,7 @@ TEST(EpisodeWebHooks, TheSnapshotCarriesTheCodersCurrentLabelsFromFreePlayOn) {
   EpisodeObservers observers;
   observers.push_back(std::make_unique<Keep>(ticks));
   const std::atomic<bool> stop{false};
-  const auto r = run_episode(s, 11, SharedModels::shipped(), stop, observers, {&s, "coded", 11});
+  const auto r = run_episode({.scenario = s, .seed = 11, .stop = stop, .id = "coded"}, observed_by(observers));
   ASSERT_FALSE(ticks.empty());
   std::set<std::string> seen;
   const Keep::Tick* last_freeplay = nullptr;
@@ -119,7 +119,7 @@ TEST(EpisodeWebHooks, TheSnapshotCarriesTheChildsHiddenStateAsItsOwnTimelineHasI
   EpisodeObservers observers;
   observers.push_back(std::make_unique<KeepHidden>(ticks));
   const std::atomic<bool> stop{false};
-  const auto r = run_episode(s, 11, SharedModels::shipped(), stop, observers, {&s, "hidden", 11});
+  const auto r = run_episode({.scenario = s, .seed = 11, .stop = stop, .id = "hidden"}, observed_by(observers));
   const Hidden* last_freeplay = nullptr;
   for (const auto& t : ticks) {
     EXPECT_GE(t.motivation, 0.0);
@@ -146,7 +146,8 @@ TEST(EpisodeWebHooks, AnExternalRobotsSpeechIsTheRobotsSayHeardInTheRoom) {
   observers.push_back(std::make_unique<Keep>(ticks));
   const std::atomic<bool> stop{false};
   Speaker speaker;
-  const auto r = run_episode(s, 5, SharedModels::shipped(), stop, observers, {&s, "say", 5}, nullptr, &speaker);
+  const auto r =
+      run_episode({.scenario = s, .seed = 5, .stop = stop, .id = "say", .robot = &speaker}, observed_by(observers));
   const Event* said = nullptr;
   for (const auto& e : r.events.events()) {
     if (e.source == "robot" && e.type == "say" && e.data["text"] == "Shall we build a zoo together?") said = &e;

@@ -51,11 +51,12 @@ TEST(Partnership, AResponsiveRobotSustainsJointPlay) {
 
 TEST(Partnership, FullEpisodesCarryTheCodedGroundTruthAndTheChildrensStates) {
   const std::atomic<bool> stop{false};
-  const auto cc = run_episode(scenario_from_document(parse_yaml(
-                                  "name: t\ncondition: child-child\nprotocol: {greeting_s: 0, tutorial_s: 0, "
-                                  "debriefing_s: 0, freeplay_cap_s: 300}\n",
-                                  "test.yaml")),
-                              3, SharedModels::shipped(), stop);
+  const auto cc = run_episode({.scenario = scenario_from_document(parse_yaml(
+                                   "name: t\ncondition: child-child\nprotocol: {greeting_s: 0, tutorial_s: 0, "
+                                   "debriefing_s: 0, freeplay_cap_s: 300}\n",
+                                   "test.yaml")),
+                               .seed = 3,
+                               .stop = stop});
   ASSERT_EQ(cc.children.size(), 2u);
   const auto session = session_result(cc);
   ASSERT_TRUE(session.yellow.has_value());
@@ -80,7 +81,7 @@ TEST(EventCoding, ARecordedEventLogIsCodedAsTheLiveEpisodeWas) {
                     "debriefing_s: 0, freeplay_cap_s: 600}}\n",
                     condition),
         "test.yaml"));
-    const auto episode = run_episode(s, 21, SharedModels::shipped(), stop);
+    const auto episode = run_episode({.scenario = s, .seed = 21, .stop = stop});
     const auto coded = code_event_log(episode.events.events(), SharedModels::shipped().child_params->coder);
     ASSERT_TRUE(coded.purple.has_value());
     EXPECT_EQ(coded.yellow.has_value(), std::string(condition) == "child-child");

@@ -128,7 +128,7 @@ TEST(WebFoxglove, TheNaosJointsAndLinksAndACameraFrameAreRos1Messages) {
   runner::EpisodeObservers observers;
   observers.push_back(std::move(first));
   const std::atomic<bool> stop{false};
-  runner::run_episode(s, 1, runner::SharedModels::shipped(), stop, observers, {&s, "nao", 1});
+  runner::run_episode({.scenario = s, .seed = 1, .stop = stop, .id = "nao"}, runner::observed_by(observers));
   const auto& robot = keep->robot;
   ASSERT_GT(robot.joint_names.size(), 20u);
 

@@ -69,8 +69,8 @@ Run run(RobotMode mode, const std::vector<std::string>& commands,
     if (hook) hook(robot, log, snap);
   }));
   const std::atomic<bool> stop{false};
-  const runner::EpisodeInfo info{&s, "t", 3};
-  out.result = runner::run_episode(s, 3, runner::SharedModels::shipped(), stop, observers, info, nullptr, &robot);
+  out.result = runner::run_episode({.scenario = s, .seed = 3, .stop = stop, .id = "t", .robot = &robot},
+                                   runner::observed_by(observers));
   out.log = log.all();
   return out;
 }

@@ -28,8 +28,6 @@ namespace freeplay::web {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
 constexpr int kBackgroundJpegQuality = 85;
 constexpr int kItemPicturePx = 160;
 constexpr double kCameraRateHz = 1.0;  // the 3-D view is a glance, not a video: rendering runs on the sim thread
@@ -79,24 +77,28 @@ class Session {
   WebSignals& signals() { return signals_; }
   /// The bag recorder's switch.
   RecorderSwitch& recorder() { return *recorder_; }
-  /// Puts the scenario's camera rig behind the cameras switch (the session keeps it); sinks must outlive it.
-  ObserverSwitch& set_cameras(std::unique_ptr<runner::EpisodeObserver> rig) {
-    cameras_ = std::make_unique<ObserverSwitch>(std::move(rig), "cameras", log_);
-    return *cameras_;
-  }
+  /// Switches the scenario's camera rig with `cameras` (the live episode's switch; it must outlive the session's API).
+  void set_cameras(runner::ObserverSwitch& cameras) { cameras_ = &cameras; }
+  /// Logs a switch of the cameras at episode time `t` (`cameras`/`paused|resumed`).
+  void cameras_switched(double t, bool on) { log_.add({t, "cameras", on ? "resumed" : "paused", nullptr}); }
 
   /// Every component's state: the game, the robot side, the recorder, the cameras (sim thread).
   nlohmann::json components(const std::string& stage) const {
     nlohmann::json out{{"game", {{"state", stage == "ended" ? "ended" : "running"}, {"stage", stage}}},
                        {"robot", nullptr},
                        {"recorder", recorder_->status()},
-                       {"cameras", {{"state", !cameras_ ? "none" : cameras_->on() ? "running" : "paused"},
-                                    {"names", camera_names_}}}};
+                       {"cameras", {{"state", cameras_state()}, {"names", camera_names_}}}};
     if (robot_) {
       const auto r = robot_->state();
       out["robot"] = {{"state", r["paused"].get<bool>() ? "paused" : "running"}, {"mode", r["mode"]}};
     }
     return out;
+  }
+
+  /// "none" (the scenario lists no cameras), "running" or "paused" (any thread).
+  std::string cameras_state() const {
+    const auto* cameras = cameras_.load();
+    return cameras == nullptr ? "none" : cameras->on() ? "running" : "paused";
   }
 
   WizardRobot* robot() { return robot_.get(); }
@@ -222,13 +224,13 @@ class Session {
     const auto name = c.args["name"].get<std::string>();
     const bool start = c.args["action"] == "start";
     if (name == "robot" && !robot_) return error_reply(409, "'component': a child-child session has no robot side");
-    if (name == "cameras" && !cameras_) {
+    if (name == "cameras" && cameras_ == nullptr) {
       return error_reply(409, "'component': the scenario lists no cameras (cameras: in the scenario, docs/scenarios.md)");
     }
     log_.add({t, "experimenter", "component", c.args});
     if (name == "robot") robot_->push(c);
     if (name == "recorder") recorder_->request(start);
-    if (name == "cameras") cameras_->request(start);
+    if (name == "cameras") cameras_.load()->request(start);
     return json_reply(202, {{"ok", true}, {"type", c.type}});
   }
 
@@ -237,7 +239,7 @@ class Session {
   std::string scene_;
   WebSignals signals_;
   std::unique_ptr<RecorderSwitch> recorder_;
-  std::unique_ptr<ObserverSwitch> cameras_;
+  std::atomic<runner::ObserverSwitch*> cameras_{nullptr};
   std::vector<std::string> camera_names_;
   std::vector<std::string> item_names_;
   std::map<std::string, std::string> item_pictures_;  // API path → PNG
@@ -301,16 +303,14 @@ class FoxgloveCameras final : public runner::FrameSink {
   std::map<std::string, std::pair<int, std::string>> channels_;  // camera → (channel id, optical frame)
 };
 
-/// Paces the episode to the wall clock and turns every tick into a state frame for the page.
+/// Turns every tick into a state frame for the page (the live episode paces the ticks).
 class WebObserver final : public runner::EpisodeObserver {
  public:
-  WebObserver(Session& session, WebServer& server, const runner::EpisodeInfo& info, double rate,
-              std::filesystem::path out, std::size_t& ticks)
-      : session_(session), server_(server), info_(info), rate_(rate), out_(std::move(out)), ticks_(ticks),
-        camera_sink_(session) {}
+  WebObserver(Session& session, WebServer& server, const runner::EpisodeInfo& info, std::filesystem::path out,
+              std::size_t& ticks)
+      : session_(session), server_(server), info_(info), out_(std::move(out)), ticks_(ticks), camera_sink_(session) {}
 
   void observe(const runner::EpisodeSnapshot& s) override {
-    pace(s.t);
     const double tick_ms = unix_ms();
     for (const auto& e : s.new_events) session_.log().add(e);
     if (auto* robot = session_.robot()) {
@@ -415,19 +415,9 @@ class WebObserver final : public runner::EpisodeObserver {
     frame["camera"] = camera_name_.empty() ? nlohmann::json() : nlohmann::json{{"name", camera_name_}, {"version", version}, {"stamp", stamp}};
   }
 
-  void pace(double t) {
-    if (!start_) {
-      start_ = Clock::now();
-      t0_ = t;
-    }
-    std::this_thread::sleep_until(*start_ + std::chrono::duration_cast<Clock::duration>(
-                                                std::chrono::duration<double>((t - t0_) / rate_)));
-  }
-
   Session& session_;
   WebServer& server_;
   runner::EpisodeInfo info_;
-  double rate_;
   std::filesystem::path out_;
   std::size_t& ticks_;
   int screenshots_ = 0;
@@ -437,24 +427,9 @@ class WebObserver final : public runner::EpisodeObserver {
   std::unique_ptr<runner::CameraRig> rig_;
   std::unique_ptr<FoxgloveTopics> foxglove_topics_;  // made at the first tick
   std::string camera_name_;
-  std::optional<Clock::time_point> start_;
-  double t0_ = 0.0;
   std::uint64_t background_version_ = ~std::uint64_t{0};
   bool freeplay_seen_ = false;
   std::uint64_t seq_ = 0;
-};
-
-/// The episode owns its observers; the session's outlive it (for the frames after the episode and the API).
-class ObserverRef final : public runner::EpisodeObserver {
- public:
-  explicit ObserverRef(runner::EpisodeObserver& observer) : observer_(observer) {}
-  void begin(const runner::EpisodeInfo& info) override { observer_.begin(info); }
-  void observe(const runner::EpisodeSnapshot& snapshot) override { observer_.observe(snapshot); }
-  void end(runner::EpisodeResult& result) override { observer_.end(result); }
-  void abort() override { observer_.abort(); }
-
- private:
-  runner::EpisodeObserver& observer_;
 };
 
 }  // namespace
@@ -462,8 +437,10 @@ class ObserverRef final : public runner::EpisodeObserver {
 WebSessionReport serve_web(const runner::Scenario& scenario, std::uint64_t seed, const WebSessionOptions& options,
                            const std::atomic<bool>& stop) {
   // The server binds first, so a bad address or a port in use leaves no session folder behind; it is declared after
-  // the session so that it stops (joining its thread) before the session goes.
+  // the session and the live episode (whose camera switch the API turns) so that it stops (joining its thread)
+  // before they go.
   std::optional<Session> session;
+  runner::LiveEpisode live(options.rate, stop);
   std::atomic<Session*> ready{nullptr};
   auto server_options = options.server;
   std::vector<std::string> cameras;
@@ -492,22 +469,22 @@ WebSessionReport serve_web(const runner::Scenario& scenario, std::uint64_t seed,
     }
   } detach{options};
   WebSessionReport report;
-  const runner::EpisodeInfo info{&scenario, "web", seed};
-  WebObserver observer(*session, server, info, options.rate, options.out, report.ticks);
-  runner::EpisodeObservers observers;  // the page first (it adds the tick's events to the session log), then the bag
-  observers.push_back(std::make_unique<ObserverRef>(observer));
-  observers.push_back(std::make_unique<ObserverRef>(session->recorder()));
-  if (options.also_observe != nullptr) observers.push_back(std::make_unique<ObserverRef>(*options.also_observe));
+  const runner::EpisodeInputs inputs{.scenario = scenario, .seed = seed, .id = "web", .robot = session->robot(),
+                                     .signals = &session->signals()};
+  WebObserver observer(*session, server, inputs.info(), options.out, report.ticks);
+  // The page first (it adds the tick's events to the session log), then the bag, then the other fronts.
+  live.attach(observer);
+  live.attach(session->recorder());
+  if (options.also_observe != nullptr) live.attach(*options.also_observe);
   FoxgloveCameras foxglove_cameras(server, scenario);
+  std::unique_ptr<runner::CameraRig> rig;
   if (!scenario.cameras.empty()) {  // the scenario's cameras, at their rates: into the bag and to Foxglove
     std::vector<runner::FrameSink*> sinks{&session->recorder(), &foxglove_cameras};
     if (options.also_frames != nullptr) sinks.push_back(options.also_frames);
-    auto& rig = session->set_cameras(std::make_unique<runner::CameraRig>(
-        scenario, runner::renderer_options(scenario.rendering), std::move(sinks)));
-    observers.push_back(std::make_unique<ObserverRef>(rig));
+    rig = std::make_unique<runner::CameraRig>(scenario, runner::renderer_options(scenario.rendering), std::move(sinks));
+    session->set_cameras(live.attach(*rig, true, [&session](double t, bool on) { session->cameras_switched(t, on); }));
   }
-  report.result = runner::run_episode(scenario, seed, runner::SharedModels::shipped(), stop, observers, info, nullptr,
-                                      session->robot(), &session->signals());
+  report.result = live.run(inputs);
   if (!report.result.aborted) {
     std::ofstream(options.out / "episode.json") << report.result.record.dump(2) << '\n';
     while (options.linger && !session->finalised() && !stop.load()) {
@@ -517,6 +494,7 @@ WebSessionReport serve_web(const runner::Scenario& scenario, std::uint64_t seed,
     observer.idle_frame(report.result.simulated_s);
   }
   report.server = server.stats();
+  report.timing = live.timing();
   return report;
 }
 

@@ -9,6 +9,7 @@
 
 #include "freeplay/runner/episode.hpp"
 #include "freeplay/runner/frame_sink.hpp"
+#include "freeplay/runner/live_episode.hpp"
 
 namespace freeplay::ros_live {
 
@@ -20,17 +21,10 @@ struct ServeOptions {
   double master_timeout_s = 10.0;   ///< how long to wait for the ROS master
 };
 
-/// Publication timing of a served episode: how late each 10 Hz tick's topics went out against its schedule.
-struct ServeTiming {
-  std::size_t ticks = 0;     ///< ticks published
-  double p50_late_ms = 0.0;  ///< median lateness
-  double p99_late_ms = 0.0;  ///< 99th percentile lateness
-  double max_late_ms = 0.0;  ///< largest lateness
-};
-
-/// The ROS graph side of a served episode: publishes every tick of the game and the Nao on the graph (paced to the
-/// wall clock), takes `sandtray/signals/*` from it and, with `external_robot`, the robot's commands. `serve` runs an
-/// episode with it; `freeplay serve --web --web-graph` attaches it to the web session's episode.
+/// The ROS graph side of a served episode: publishes every tick of the game and the Nao on the graph (the live
+/// episode it is attached to paces the ticks), takes `sandtray/signals/*` from it and, with `external_robot`, the
+/// robot's commands. `serve` runs a live episode with it; `freeplay serve --web --web-graph` attaches it to the web
+/// session's live episode.
 class GraphSide {
  public:
   /// Starts the ROS client (std::runtime_error when no master answers) and the nodes of `scenario`.
@@ -47,17 +41,16 @@ class GraphSide {
   runner::SignalSource& signals();
   /// The external robot (`external_robot` in a child-robot scenario), or null.
   runner::RobotActionSource* robot();
-  /// Publication timing of the ticks so far.
-  ServeTiming timing() const;
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
 
-/// Runs one live episode of `scenario` from root seed `seed`; throws std::runtime_error when no master answers;
-/// returns early (aborted) once `stop` is set. `timing` receives the publication timing.
+/// Runs one live episode of `scenario` from root seed `seed` (runner::LiveEpisode, paced at `options.rate`); throws
+/// std::runtime_error when no master answers; returns early (aborted) once `stop` is set. `timing` receives how late
+/// its ticks finished (topics, cameras and all).
 runner::EpisodeResult serve(const runner::Scenario& scenario, std::uint64_t seed, const ServeOptions& options,
-                            const std::atomic<bool>& stop, ServeTiming* timing = nullptr);
+                            const std::atomic<bool>& stop, runner::PacingTiming* timing = nullptr);
 
 }  // namespace freeplay::ros_live

@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <string>
+#include <vector>
 #include <nlohmann/json.hpp>
 
 #include "freeplay/agents/annotations.hpp"
@@ -49,20 +51,43 @@ struct EpisodeResult {
   bool aborted = false;                    ///< stopped early by the stop flag: discard
 };
 
-/// Runs one episode of `scenario` from root seed `seed`; returns with `aborted` when `stop` becomes true.
-EpisodeResult run_episode(const Scenario& scenario, std::uint64_t seed, const SharedModels& models,
-                          const std::atomic<bool>& stop, int episode_index = 0);
-/// Same, with observers that see every 10 Hz tick of every stage (cameras, recorders); the result is identical
-/// to the run without observers except for the fields the observers add to the record. With `children`, the
-/// children's free-play actions come from it instead of the synthetic agents (which then leave no annotations).
-/// With `robot` (child-robot scenarios), the robot's finger poses come from it instead of its policy and executor.
-/// With `signals`, signals received from outside are applied at every tick: `start_tutorial`, `start_freeplay` and
-/// (in free play) `blank_interface` end the stages before the one they start (free play then ends "by signal");
-/// every other signal goes to the game as it is.
-EpisodeResult run_episode(const Scenario& scenario, std::uint64_t seed, const SharedModels& models,
-                          const std::atomic<bool>& stop, EpisodeObservers& observers, const EpisodeInfo& info,
-                          ChildActionSource* children = nullptr, RobotActionSource* robot = nullptr,
-                          SignalSource* signals = nullptr);
+/// Never set: the stop flag of an episode that runs to its end.
+inline const std::atomic<bool> kNeverStop{false};
+
+/// What one episode runs: the scenario, its root seed and the models, and the parts a front replaces (children's
+/// actions, the robot's finger, signals from outside). Deterministic from these alone.
+struct EpisodeInputs {
+  const Scenario& scenario;                              ///< what it runs (validated)
+  std::uint64_t seed = 0;                                ///< root seed
+  const SharedModels& models = SharedModels::shipped();  ///< the catalogue, child model and robot body
+  const std::atomic<bool>& stop = kNeverStop;            ///< the episode returns `aborted` once this becomes true
+  std::string id = "episode";                            ///< file id (`<variant>-<index>`) the observers see
+  int episode_index = 0;                                 ///< index within its variant (the policy's context)
+  /// The children's free-play actions instead of the synthetic agents' (which then leave no annotations), or null.
+  ChildActionSource* children = nullptr;
+  /// Child-robot scenarios: the robot's finger poses instead of its policy's and executor's, or null.
+  RobotActionSource* robot = nullptr;
+  /// Signals received from outside, applied at every tick: `start_tutorial`, `start_freeplay` and (in free play)
+  /// `blank_interface` end the stages before the one they start (free play then ends "by signal"); every other
+  /// signal goes to the game as it is. Null: none.
+  SignalSource* signals = nullptr;
+
+  /// The identity its observers see.
+  EpisodeInfo info() const { return {&scenario, id, seed, episode_index}; }
+};
+
+/// Where an episode's ticks go while it runs: observers that see every 10 Hz tick of every stage (cameras,
+/// recorders, live fronts). The result is identical to the run without observers except for the fields the
+/// observers add to the record.
+struct EpisodeOutputs {
+  std::vector<EpisodeObserver*> observers;  ///< called in order at every tick (not owned)
+};
+
+/// The outputs that hand every tick to `observers`, in order (they stay owned by the caller).
+EpisodeOutputs observed_by(const EpisodeObservers& observers);
+
+/// Runs one episode of `inputs` with `outputs` watching; returns with `aborted` when `inputs.stop` becomes true.
+EpisodeResult run_episode(const EpisodeInputs& inputs, const EpisodeOutputs& outputs = {});
 
 /// Makes the observers an episode of a scenario needs (cameras, recorder) for the run folder `run_dir`.
 using ObserverFactory = std::function<EpisodeObservers(const Scenario& scenario, const std::filesystem::path& run_dir)>;

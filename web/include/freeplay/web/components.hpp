@@ -1,7 +1,7 @@
 #pragma once
 // The parts of a web session the experiment manager shows and switches (docs/web.md, "Components"): the page's
-// `sandtray/signals/*` into the served episode, the session's bag recorder (paused and resumed from the page) and
-// the scenario's camera rig (paused and resumed). The robot side's switch is the WizardRobot's.
+// `sandtray/signals/*` into the served episode and the session's bag recorder (paused and resumed from the page).
+// The camera rig's switch is the live episode's (runner::ObserverSwitch); the robot side's is the WizardRobot's.
 
 #include <atomic>
 #include <memory>
@@ -11,6 +11,7 @@
 
 #include "freeplay/runner/episode_observer.hpp"
 #include "freeplay/runner/frame_sink.hpp"
+#include "freeplay/runner/live_episode.hpp"
 #include "freeplay/runner/signal_source.hpp"
 #include "freeplay/web/session_log.hpp"
 
@@ -46,7 +47,7 @@ class RecorderSwitch final : public runner::EpisodeObserver, public runner::Fram
   ~RecorderSwitch() override;
 
   /// Asks for writing on or off from the next tick (any thread).
-  void request(bool on) { requested_ = on; }
+  void request(bool on) { gate_.request(on); }
   /// {state: recording|paused, folder, messages, paused_s: paused episode seconds so far} (any thread).
   nlohmann::json status() const;
 
@@ -61,37 +62,9 @@ class RecorderSwitch final : public runner::EpisodeObserver, public runner::Fram
   std::unique_ptr<recording::BagRecorder> recorder_;
   std::string id_;
   SessionLog& log_;
-  std::atomic<bool> requested_;
-  std::atomic<bool> on_;
-  std::size_t cursor_ = 0;        // the session log's events up to here are written or skipped
-  std::vector<Event> events_;     // this tick's events (reused)
-  mutable std::mutex mutex_;      // status
-  double paused_since_ = -1.0;    // episode time the current pause began (< 0: not paused)
-  double paused_s_ = 0.0;         // paused episode time of the pauses that ended
-  double last_t_ = 0.0;           // episode time of the last tick seen
-};
-
-/// An observer behind a switch (the camera rig): while stopped it sees no ticks (begin, end and abort always pass).
-class ObserverSwitch final : public runner::EpisodeObserver {
- public:
-  /// Passes ticks to `inner`, named `name` in the log, while on.
-  ObserverSwitch(std::unique_ptr<runner::EpisodeObserver> inner, std::string name, SessionLog& log);
-  /// Asks for on or off from the next tick (any thread).
-  void request(bool on) { requested_ = on; }
-  /// True while ticks pass.
-  bool on() const { return on_; }
-
-  void begin(const runner::EpisodeInfo& info) override { inner_->begin(info); }
-  void observe(const runner::EpisodeSnapshot& snapshot) override;
-  void end(runner::EpisodeResult& result) override { inner_->end(result); }
-  void abort() override { inner_->abort(); }
-
- private:
-  std::unique_ptr<runner::EpisodeObserver> inner_;
-  std::string name_;
-  SessionLog& log_;
-  std::atomic<bool> requested_{true};
-  std::atomic<bool> on_{true};
+  runner::ObserverSwitch gate_;  // the recorder while writing; its off time is the paused time
+  std::size_t cursor_ = 0;       // the session log's events up to here are written or skipped
+  std::vector<Event> events_;    // this tick's events (reused)
 };
 
 }  // namespace freeplay::web

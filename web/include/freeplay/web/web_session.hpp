@@ -10,6 +10,7 @@
 
 #include "freeplay/runner/episode.hpp"
 #include "freeplay/runner/frame_sink.hpp"
+#include "freeplay/runner/live_episode.hpp"
 #include "freeplay/web/server.hpp"
 #include "freeplay/web/wizard_robot.hpp"
 
@@ -41,10 +42,12 @@ struct WebSessionReport {
   runner::EpisodeResult result;  ///< the episode
   ServerStats server;            ///< the server's counters
   std::size_t ticks = 0;         ///< state frames built
+  runner::PacingTiming timing;   ///< how late the episode's ticks finished against the wall-clock schedule
 };
 
-/// Runs one live episode of `scenario` from root seed `seed` served on the web; returns once it ended and (with
-/// `linger`) the session was finalised, or early (aborted) when `stop` is set during the episode.
+/// Runs one live episode of `scenario` from root seed `seed` (runner::LiveEpisode, paced at `options.rate`) served on
+/// the web; returns once it ended and (with `linger`) the session was finalised, or early (aborted) when `stop` is
+/// set during the episode.
 WebSessionReport serve_web(const runner::Scenario& scenario, std::uint64_t seed, const WebSessionOptions& options,
                            const std::atomic<bool>& stop);
 
