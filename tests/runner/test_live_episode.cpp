@@ -61,6 +61,27 @@ double ms_between(LiveClock::time_point a, LiveClock::time_point b) {
   return std::chrono::duration<double, std::milli>(b - a).count();
 }
 
+// A live episode on a fake clock with one watcher that notes the wall time of every tick.
+struct WatchedLive {
+  FakeClock clock;
+  LiveEpisode live;
+  Watcher watcher;
+  explicit WatchedLive(double speed) : live(speed, kNeverStop, clock) {
+    watcher.clock = &clock;
+    live.attach(watcher);
+  }
+
+  // Every tick was handed over on its schedule at `ms_per_s` wall ms per simulated second, the ticks after
+  // `held_at` `held_ms` later.
+  void expect_on_schedule(double ms_per_s, std::size_t held_at = ~std::size_t{0}, double held_ms = 0.0) const {
+    ASSERT_EQ(watcher.wall.size(), watcher.t.size());
+    for (std::size_t i = 0; i < watcher.t.size(); ++i) {
+      const double expected = (watcher.t[i] - watcher.t.front()) * ms_per_s + (i > held_at ? held_ms : 0.0);
+      EXPECT_NEAR(ms_between(watcher.wall.front(), watcher.wall[i]), expected, 1e-3) << "tick " << i;
+    }
+  }
+};
+
 }  // namespace
 
 TEST(Pacer, TicksAreDueOnAnAbsoluteScheduleAtItsSpeed) {
@@ -82,19 +103,13 @@ TEST(Pacer, TicksAreDueOnAnAbsoluteScheduleAtItsSpeed) {
 
 TEST(LiveEpisode, PacesEveryTickAndRunsTheSameEpisodeAsHeadless) {
   const auto s = short_scenario();
-  FakeClock clock;
-  LiveEpisode live(4.0, kNeverStop, clock);
-  Watcher watcher;
-  watcher.clock = &clock;
-  live.attach(watcher);
-  const auto result = live.run({.scenario = s, .seed = 3, .id = "live"});
+  WatchedLive run(4.0);
+  const auto result = run.live.run({.scenario = s, .seed = 3, .id = "live"});
   ASSERT_FALSE(result.aborted);
-  ASSERT_EQ(watcher.t.size(), 40u);
-  EXPECT_EQ(watcher.begun, 1);
-  EXPECT_EQ(watcher.ended, 1);
-  for (std::size_t i = 0; i < watcher.t.size(); ++i) {  // 0.1 simulated s at 4× is 25 ms of wall time
-    EXPECT_NEAR(ms_between(watcher.wall.front(), watcher.wall[i]), (watcher.t[i] - watcher.t.front()) * 250.0, 1e-3);
-  }
+  ASSERT_EQ(run.watcher.t.size(), 40u);
+  EXPECT_EQ(run.watcher.begun, 1);
+  EXPECT_EQ(run.watcher.ended, 1);
+  run.expect_on_schedule(250.0);  // 0.1 simulated s at 4× is 25 ms of wall time
   const auto headless = run_episode({.scenario = s, .seed = 3});
   EXPECT_EQ(result.events.to_jsonl(), headless.events.to_jsonl());
 }
@@ -123,29 +138,21 @@ TEST(LiveEpisode, TimingIsHowLateEachTickFinishedWithEveryObserver) {
 
 TEST(LiveEpisode, APauseHoldsTheEpisodeAndMovesTheScheduleOn) {
   const auto s = short_scenario();
-  FakeClock clock;
-  LiveEpisode live(1.0, kNeverStop, clock);
-  Watcher watcher;
-  watcher.clock = &clock;
-  watcher.hook = [&](std::size_t tick) {
-    if (tick == 10) live.pause();
+  WatchedLive run(1.0);
+  run.watcher.hook = [&](std::size_t tick) {
+    if (tick == 10) run.live.pause();
   };
-  clock.on_paused_wait = [&] {
-    EXPECT_TRUE(live.paused());
-    if (clock.paused_waits == 3) live.resume();
+  run.clock.on_paused_wait = [&] {
+    EXPECT_TRUE(run.live.paused());
+    if (run.clock.paused_waits == 3) run.live.resume();
   };
-  live.attach(watcher);
-  const auto result = live.run({.scenario = s, .seed = 3});
+  const auto result = run.live.run({.scenario = s, .seed = 3});
   EXPECT_FALSE(result.aborted);
-  EXPECT_FALSE(live.paused());
-  EXPECT_EQ(clock.paused_waits, 3);
-  ASSERT_EQ(watcher.t.size(), 40u);
-  for (std::size_t i = 0; i < watcher.t.size(); ++i) {  // held before tick 11 for 3 × 100 ms
-    const double pause_ms = i > 10 ? 300.0 : 0.0;
-    EXPECT_NEAR(ms_between(watcher.wall.front(), watcher.wall[i]), (watcher.t[i] - watcher.t.front()) * 1e3 + pause_ms,
-                1e-3);
-  }
-  EXPECT_DOUBLE_EQ(live.timing().max_late_ms, 0.0);
+  EXPECT_FALSE(run.live.paused());
+  EXPECT_EQ(run.clock.paused_waits, 3);
+  ASSERT_EQ(run.watcher.t.size(), 40u);
+  run.expect_on_schedule(1e3, 10, 300.0);  // held before tick 11 for 3 × 100 ms
+  EXPECT_DOUBLE_EQ(run.live.timing().max_late_ms, 0.0);
 }
 
 TEST(LiveEpisode, StopsFromOutsideFromItselfAndWhilePaused) {
