@@ -60,5 +60,6 @@ TEST(WebSession, AChildChildSessionTakesExperimentCommandsAndRefusesRobotOnes) {
   EXPECT_EQ(signals, 1);
   EXPECT_TRUE(std::filesystem::exists(out / "episode.json"));
   EXPECT_GT(report.ticks, 60u);  // ≈ 80 ticks of 0.1 s
+  EXPECT_GE(report.timing.ticks, 60u);  // the live episode paced and timed every tick (values: wall time, not asserted)
   EXPECT_EQ(report.server.refused, 4u);
 }
