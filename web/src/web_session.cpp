@@ -17,6 +17,7 @@
 #include "freeplay/recording/camera_topics.hpp"
 #include "freeplay/runner/camera_rig.hpp"
 #include "freeplay/runner/frame_sink.hpp"
+#include "freeplay/runner/live_episode.hpp"
 #include "freeplay/sim/sandtray.hpp"
 #include "freeplay/sim/screen_renderer.hpp"
 #include "freeplay/web/components.hpp"

@@ -3,7 +3,6 @@
 // `sandtray/signals/*` into the served episode and the session's bag recorder (paused and resumed from the page).
 // The camera rig's switch is the live episode's (runner::ObserverSwitch); the robot side's is the WizardRobot's.
 
-#include <atomic>
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
