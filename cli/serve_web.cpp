@@ -30,8 +30,10 @@ void add_web_options(CLI::App& serve, WebCliOptions& o) {
                                       "ROS master needed; docs/web.md)");
   serve.add_option("--web-token", o.token, "Access token every request must carry (required beyond loopback)");
   serve.add_option("--web-out", o.out, "Session folder for events.jsonl and experiment.yaml (default runs/web-<UTC>)");
-  serve.add_option("--web-mode", o.mode, "Who drives the robot at the start")
-      ->check(CLI::IsMember({"autonomous", "wizard", "supervised"}));
+  [[maybe_unused]] auto* mode = serve.add_option("--web-mode", o.mode, "Who drives the robot at the start");
+#ifdef FREEPLAY_WITH_WEB
+  mode->check(CLI::IsMember(web::robot_mode_names()));
+#endif
   serve.add_option("--sparc-timeout", o.sparc_timeout_s, "Supervised mode: a proposal executes after this many "
                                                          "simulated seconds unless vetoed")
       ->check(CLI::Range(0.1, 60.0));
@@ -68,8 +70,7 @@ void run_web_serve(const std::string& file, const std::vector<std::string>& over
   }
   auto scenario = runner::load_scenario(file, overrides, scenario_vocabulary());
   options.rate = rate;
-  options.mode = o.mode == "wizard" ? web::RobotMode::Wizard
-                 : o.mode == "supervised" ? web::RobotMode::Supervised : web::RobotMode::Autonomous;
+  web::from_string(o.mode, options.mode);  // checked by --web-mode's IsMember
   options.sparc_timeout_s = o.sparc_timeout_s;
   options.linger = !o.no_linger;
   options.record = o.record;

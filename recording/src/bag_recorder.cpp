@@ -175,7 +175,7 @@ struct BagRecorder::Impl {
                               utc.tm_year + 1900, utc.tm_mon + 1, utc.tm_mday, utc.tm_hour, utc.tm_min, utc.tm_sec,
                               scenario_name, id, seed);
     info.timestamp_ns = ros_time(freeplay_start.value_or(0.0)).toNSec();
-    info.condition = runner::pinsoro_name(condition);
+    info.condition = condition;
     const std::string suffix = condition == runner::Condition::ChildRobot ? "2" : "1";
     for (const auto& p : participants) {
       Participant out = p;
@@ -204,7 +204,7 @@ struct BagRecorder::Impl {
   void write_csv(const nlohmann::json& children, const agents::SessionAnnotations& annotations) const {
     PinsoroSessionInfo table;
     table.id = id;
-    table.condition = runner::pinsoro_name(condition);
+    table.condition = condition;
     table.annotators = "freeplay-sim";
     const auto info = experiment(&children, true);
     if (info.purple) std::tie(table.purple_age, table.purple_gender) = std::pair(info.purple->age, info.purple->gender);

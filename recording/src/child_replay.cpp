@@ -9,6 +9,7 @@
 #include <map>
 #include <optional>
 
+#include "freeplay/agents/condition.hpp"
 #include "freeplay/core/error.hpp"
 #include "freeplay/core/yaml_schema.hpp"
 #include "freeplay/recording/bag_recorder.hpp"
@@ -28,6 +29,13 @@ E parse_name(const std::optional<E>& value, const std::string& name, const char*
   if (value) return *value;
   throw InputError(fmt::format("unknown {} '{}' in the recorded events", what, name), what,
                    "a bag written by this version of freeplay-sim");
+}
+
+// The condition of a recorded scenario document (validated when recorded, so its `condition:` is always there).
+agents::Condition recorded_condition(const YAML::Node& scenario) {
+  const std::string name = scenario["condition"] ? scenario["condition"].as<std::string>() : "";
+  agents::Condition condition{};
+  return parse_name(from_string(name, condition) ? std::optional(condition) : std::nullopt, name, "condition");
 }
 
 struct Finger {
@@ -114,7 +122,7 @@ RecordedChildren read_recorded_children(const std::filesystem::path& session) {
   out.freeplay_duration_s = *duration;
   const auto scenario = YAML::Load(out.scenario_yaml);
   out.seats = {"purple"};
-  if (scenario["condition"] && scenario["condition"].as<std::string>() == "child-child") out.seats.push_back("yellow");
+  if (recorded_condition(scenario) == agents::Condition::ChildChild) out.seats.push_back("yellow");
 
   const double t0 = *freeplay_start;
   const auto tick_of = [&](double t) { return std::lround((t - t0) / kTickS); };
@@ -211,7 +219,7 @@ agents::ChildActions ReplayedChildren::actions(const std::string& seat, double t
 runner::Scenario replay_scenario(const RecordedChildren& recording, const std::string& policy,
                                  const runner::ScenarioVocabulary& vocabulary) {
   auto root = YAML::Load(recording.scenario_yaml);
-  const bool child_robot = root["condition"].as<std::string>() == "child-robot";
+  const bool child_robot = recorded_condition(root) == agents::Condition::ChildRobot;
   if (!policy.empty()) {
     if (!child_robot) {
       throw InputError(fmt::format("'{}' is a child-child session: there is no robot policy to change",

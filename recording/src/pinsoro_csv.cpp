@@ -126,10 +126,11 @@ std::string PinsoroCsv::text(const PinsoroSessionInfo& info, const agents::Sessi
   const auto& columns = pinsoro_csv_columns();
   for (std::size_t i = 0; i < columns.size(); ++i) out += (i == 0 ? "" : ",") + columns[i];
   out += '\n';
-  const bool yellow_child = info.condition == "childchild";
+  const bool yellow_child = info.condition != agents::Condition::ChildRobot;
+  const std::string_view condition = agents::pinsoro_name(info.condition);
   for (std::size_t frame = 0; frame < rows_.size(); ++frame) {
     const auto& row = rows_[frame];
-    std::string line = fmt::format("{:.4f},{},{},{},{},{},{},", row.t, info.id, info.condition, info.annotators,
+    std::string line = fmt::format("{:.4f},{},{},{},{},{},{},", row.t, info.id, condition, info.annotators,
                                    info.complete ? "True" : "False", info.purple_age, info.purple_gender);
     line += yellow_child ? fmt::format("{},{}", info.yellow_age, info.yellow_gender) : std::string(",");
     child_fields(line, row.purple.present, frame, row.purple.head, row.purple.gaze, row.purple.keypoints);

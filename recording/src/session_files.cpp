@@ -42,7 +42,7 @@ std::string to_experiment_yaml(const ExperimentInfo& info) {
   YAML::Emitter out;
   out << YAML::BeginMap;
   out << YAML::Key << "timestamp" << YAML::Value << info.timestamp_ns;
-  out << YAML::Key << "condition" << YAML::Value << info.condition;
+  out << YAML::Key << "condition" << YAML::Value << std::string(agents::pinsoro_name(info.condition));
   if (info.purple) participant(out, "purple-participant", *info.purple);
   if (info.yellow) participant(out, "yellow-participant", *info.yellow);
   out << YAML::Key << "markers" << YAML::Value << YAML::BeginMap;

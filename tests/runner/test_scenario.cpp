@@ -127,4 +127,25 @@ TEST(Scenario, EnumNamesRoundTrip) {
   Condition unchanged = Condition::ChildRobot;
   EXPECT_FALSE(from_string("robot-robot", unchanged));
   EXPECT_EQ(unchanged, Condition::ChildRobot);
+  ScenarioKind kind = ScenarioKind::controller;
+  EXPECT_FALSE(from_string("session", kind));
+  EXPECT_FALSE(from_string("Controller", kind));
+  EXPECT_EQ(kind, ScenarioKind::controller);
+  stage::StageMode mode = stage::StageMode::dynamic;
+  EXPECT_FALSE(from_string("physics", mode));
+  EXPECT_FALSE(from_string("", mode));
+  EXPECT_EQ(mode, stage::StageMode::dynamic);
+}
+
+TEST(Scenario, PinsoroSpellingRoundTrips) {
+  for (const auto condition : {Condition::ChildChild, Condition::ChildRobot}) {
+    Condition read = condition == Condition::ChildChild ? Condition::ChildRobot : Condition::ChildChild;
+    ASSERT_TRUE(agents::from_pinsoro_name(pinsoro_name(condition), read));
+    EXPECT_EQ(read, condition);
+  }
+  // The scenario names are not the dataset's, and "controller" has no spelling of its own there.
+  Condition unchanged = Condition::Controller;
+  EXPECT_FALSE(agents::from_pinsoro_name("child-robot", unchanged));
+  EXPECT_FALSE(agents::from_pinsoro_name("controller", unchanged));
+  EXPECT_EQ(unchanged, Condition::Controller);
 }

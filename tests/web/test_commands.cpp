@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "freeplay/web/commands.hpp"
+#include "freeplay/web/robot_mode.hpp"
 
 using namespace freeplay::web;
 
@@ -93,4 +94,24 @@ TEST(WebCommands, ExperimentAndProtocolCommandsAreChecked) {
   const auto relative = parse_command(R"({"type":"move","item":"ball","x":-0.05,"y":0.02,"frame":"item","via":"sparc/selected_action"})", kItems);
   EXPECT_EQ(relative.args["frame"], "item");
   EXPECT_EQ(relative.args["via"], "sparc/selected_action");
+}
+
+TEST(WebCommands, RobotModeNamesRoundTripAndBadModesAreRefused) {
+  for (const auto mode : {RobotMode::Autonomous, RobotMode::Wizard, RobotMode::Supervised}) {
+    RobotMode read = mode == RobotMode::Wizard ? RobotMode::Supervised : RobotMode::Wizard;
+    ASSERT_TRUE(from_string(to_string(mode), read));
+    EXPECT_EQ(read, mode);
+  }
+  RobotMode unchanged = RobotMode::Supervised;
+  EXPECT_FALSE(from_string("manual", unchanged));
+  EXPECT_FALSE(from_string("Wizard", unchanged));
+  EXPECT_EQ(unchanged, RobotMode::Supervised);
+  EXPECT_EQ(robot_mode_names(), (std::vector<std::string>{"autonomous", "wizard", "supervised"}));
+  // The page's `mode` command accepts exactly these names and lists them when refusing another.
+  for (const auto& name : robot_mode_names()) {
+    EXPECT_EQ(parse_command(R"({"type":"mode","mode":")" + name + R"("})", kItems).args["mode"], name);
+  }
+  const auto [status, message] = refusal(R"({"type":"mode","mode":"manual"})");
+  EXPECT_EQ(status, 400);
+  EXPECT_NE(message.find("allowed: autonomous, wizard, supervised"), std::string::npos) << message;
 }

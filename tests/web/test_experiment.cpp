@@ -51,6 +51,21 @@ TEST(WebExperiment, DemographicsMarkersAndLikertWriteExperimentYaml) {
   EXPECT_THROW(manager.apply(command(R"({"type":"likert","social_engagement":2})"), 100.0, 120.0), CommandError);
 }
 
+TEST(WebExperiment, TheConditionCommandSwitchesTheSessionsCondition) {
+  SessionLog log;
+  const auto path = std::filesystem::temp_directory_path() / "freeplay-web-experiment-switch.yaml";
+  ExperimentManager manager(path, freeplay::runner::Condition::ChildChild, 1500000000, log);
+  EXPECT_EQ(manager.state()["condition"], "childchild");
+  manager.apply(command(R"({"type":"condition","condition":"childrobot"})"), -1.0, 1.0);
+  EXPECT_EQ(manager.state()["condition"], "childrobot");
+  EXPECT_EQ(YAML::LoadFile(path.string())["condition"].as<std::string>(), "childrobot");
+  // A child-robot session now: the yellow place is the robot's.
+  EXPECT_THROW(manager.apply(command(R"({"type":"demographics","purple":{"age":7,"gender":"female","tablet_familiarity":"2"},
+                                       "yellow":{"age":6,"gender":"male","tablet_familiarity":"na"}})"),
+                             -1.0, 1.0),
+               CommandError);
+}
+
 TEST(WebExperiment, ChildRobotSessionsHaveNoYellowChild) {
   SessionLog log;
   const auto path = std::filesystem::temp_directory_path() / "freeplay-web-experiment-cr.yaml";

@@ -13,6 +13,7 @@
 #include "freeplay/sim/sandtray.hpp"
 #include "freeplay/sim/screen.hpp"
 #include "freeplay/stage/camera_names.hpp"
+#include "freeplay/web/robot_mode.hpp"
 
 namespace freeplay::web {
 namespace {
@@ -184,7 +185,7 @@ Command parse_command(const std::string& body, const std::vector<std::string>& i
       a["y"] = p.y();
     }
   } else if (c.type == "mode") {
-    a["mode"] = f.one_of("mode", {"autonomous", "wizard", "supervised"});
+    a["mode"] = f.one_of("mode", robot_mode_names());
   } else if (c.type == "sparc") {
     a["decision"] = f.one_of("decision", {"accept", "veto"});
   } else if (c.type == "sparc_timeout") {

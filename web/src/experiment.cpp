@@ -18,7 +18,7 @@ ExperimentManager::ExperimentManager(std::filesystem::path path, runner::Conditi
   gmtime_r(&created, &utc);
   id_prefix_ = fmt::format("{:%Y-%m-%d-%H:%M}", utc);  // the supervisor's participant ids: YYYY-MM-DD-HH:MM-p1
   info_.header = fmt::format("{:%Y-%m-%d %H:%M:%S} UTC (freeplay serve --web)", utc);
-  info_.condition = runner::pinsoro_name(condition);
+  info_.condition = condition;
 }
 
 void ExperimentManager::freeplay_started(std::uint64_t unix_ns) {
@@ -32,9 +32,9 @@ void ExperimentManager::apply(const Command& command, double freeplay_t, double 
   const auto& a = command.args;
   if (finalised_) throw CommandError(409, "the session is finalised: experiment.yaml is written");
   if (command.type == "condition") {
-    info_.condition = a["condition"].get<std::string>();
+    agents::from_pinsoro_name(a["condition"].get<std::string>(), info_.condition);  // validated by parse_command
   } else if (command.type == "demographics") {
-    const bool robot = info_.condition == "childrobot";
+    const bool robot = info_.condition == agents::Condition::ChildRobot;
     const auto participant = [&](const nlohmann::json& c, const std::string& suffix) {
       return recording::Participant{id_prefix_ + "-" + suffix, c["age"].get<int>(), c["gender"].get<std::string>(),
                                     c["tablet_familiarity"].get<std::string>()};
@@ -51,7 +51,8 @@ void ExperimentManager::apply(const Command& command, double freeplay_t, double 
     if (!a["text"].get<std::string>().empty()) info_.notes[fmt::format("{:.1f}", freeplay_t)] = a["text"].get<std::string>();
   } else if (command.type == "note") {
     auto& general = info_.notes["general"];
-    general += (general.empty() ? "" : "\n") + a["text"].get<std::string>();
+    if (!general.empty()) general += '\n';
+    general += a["text"].get<std::string>();
   } else if (command.type == "likert") {
     info_.social_engagement = a["social_engagement"].get<int>();
   } else if (command.type == "finalise") {
@@ -81,7 +82,7 @@ nlohmann::json ExperimentManager::state() const {
   };
   nlohmann::json markers = nlohmann::json::array();
   for (const auto& [t, kind] : info_.markers) markers.push_back({{"t", t}, {"kind", kind}});
-  return {{"condition", info_.condition},
+  return {{"condition", std::string(agents::pinsoro_name(info_.condition))},
           {"purple", participant(info_.purple)},
           {"yellow", participant(info_.yellow)},
           {"markers", markers},

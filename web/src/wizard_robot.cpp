@@ -40,15 +40,6 @@ nlohmann::json describe(const policies::Action& action) {
 
 }  // namespace
 
-std::string_view mode_name(RobotMode mode) {
-  switch (mode) {
-    case RobotMode::Autonomous: return "autonomous";
-    case RobotMode::Wizard: return "wizard";
-    case RobotMode::Supervised: return "supervised";
-  }
-  return "wizard";
-}
-
 struct WizardRobot::Step {
   runner::RobotCommands out;
   planning::MoveWorld world;
@@ -116,7 +107,7 @@ void WizardRobot::apply(const Command& command, double t, const sim::Sandtray& t
   const auto& a = command.args;
   if (command.type == "mode") {
     const auto name = a["mode"].get<std::string>();
-    mode_ = name == "autonomous" ? RobotMode::Autonomous : name == "supervised" ? RobotMode::Supervised : RobotMode::Wizard;
+    if (!from_string(name, mode_)) mode_ = RobotMode::Wizard;  // validated by parse_command
     if (proposal_) decide_proposal("dropped", t, tray, step);
     log(tray, "wizard", "mode", {{"mode", name}});
     return;
@@ -133,7 +124,7 @@ void WizardRobot::apply(const Command& command, double t, const sim::Sandtray& t
       executor_->cancel();
       finish_move(tray);
     }
-    log(tray, "robot_side", paused_ ? "paused" : "resumed", {{"mode", std::string(mode_name(mode_))}});
+    log(tray, "robot_side", paused_ ? "paused" : "resumed", {{"mode", std::string(to_string(mode_))}});
     return;
   }
   if (command.type == "sparc") {
@@ -298,7 +289,7 @@ const policies::Observation& WizardRobot::observation(double t, const sim::Sandt
 }
 
 nlohmann::json WizardRobot::state() const {
-  nlohmann::json out{{"mode", std::string(mode_name(mode_))},
+  nlohmann::json out{{"mode", std::string(to_string(mode_))},
                      {"sparc_timeout_s", sparc_timeout_s_},
                      {"paused", paused_},
                      {"last_said", last_said_},

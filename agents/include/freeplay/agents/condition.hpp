@@ -37,4 +37,16 @@ constexpr std::string_view pinsoro_name(Condition condition) {
   return condition == Condition::ChildRobot ? "childrobot" : "childchild";
 }
 
+/// Sets `condition` to the one spelled `text` in PInSoRo's session files ("childchild", "childrobot"); false (and
+/// `condition` unchanged) when `text` is neither.
+constexpr bool from_pinsoro_name(std::string_view text, Condition& condition) {
+  for (const Condition candidate : {Condition::ChildChild, Condition::ChildRobot}) {
+    if (text == pinsoro_name(candidate)) {
+      condition = candidate;
+      return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace freeplay::agents

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 
 #include "freeplay/agents/annotations.hpp"
+#include "freeplay/agents/condition.hpp"
 #include "freeplay/recording/poses.hpp"
 #include "freeplay/runner/episode_observer.hpp"
 
@@ -19,7 +20,7 @@ const std::vector<std::string>& pinsoro_csv_columns();
 /// The session-wide fields of the table.
 struct PinsoroSessionInfo {
   std::string id;                      ///< session id (the `id` column)
-  std::string condition;               ///< "childchild" | "childrobot"
+  agents::Condition condition = agents::Condition::ChildChild;  ///< written in PInSoRo's spelling (pinsoro_name)
   std::string annotators;              ///< '+'-joined annotator names
   bool complete = true;                ///< the session was recorded to its end
   int purple_age = 0;                  ///< years

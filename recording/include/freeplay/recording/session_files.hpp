@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "freeplay/agents/annotations.hpp"
+#include "freeplay/agents/condition.hpp"
 
 namespace freeplay::recording {
 
@@ -23,7 +24,7 @@ struct Participant {
 struct ExperimentInfo {
   std::string header;                        ///< comment line (the real files: the date)
   std::uint64_t timestamp_ns = 0;            ///< ROS time of the start of free play (ns)
-  std::string condition;                     ///< "childchild" | "childrobot"
+  agents::Condition condition = agents::Condition::ChildChild;  ///< written in PInSoRo's spelling (pinsoro_name)
   std::optional<Participant> purple;         ///< the purple child
   std::optional<Participant> yellow;         ///< the yellow child (absent in child-robot sessions)
   std::map<double, std::string> markers;     ///< seconds since free play started → interesting|issue|note|screenshot

@@ -23,15 +23,10 @@
 #include "freeplay/runner/robot_action_source.hpp"
 #include "freeplay/runner/scenario.hpp"
 #include "freeplay/web/commands.hpp"
+#include "freeplay/web/robot_mode.hpp"
 #include "freeplay/web/session_log.hpp"
 
 namespace freeplay::web {
-
-/// Who decides the robot's actions.
-enum class RobotMode { Autonomous, Wizard, Supervised };
-
-/// Name of a mode ("autonomous", "wizard", "supervised").
-std::string_view mode_name(RobotMode mode);
 
 /// The robot of a web session: policy, wizard and SPARC supervision over one move executor.
 class WizardRobot final : public runner::RobotActionSource {
