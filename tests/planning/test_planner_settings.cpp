@@ -17,6 +17,16 @@ TEST(PlannerSettings, EveryStructStartsFromTheSettingsDefaults) {
   EXPECT_EQ(MoveExecutorConfig{}.time_budget_s, defaults.time_budget_s);
   EXPECT_EQ(PlannerOptions{}.finger_speed_mps, defaults.finger_speed_mps);
   EXPECT_EQ(PlannerOptions{}.pose_period_s, MoveExecutorConfig{}.pose_period_s);
+  // The one home of each default: the named constants the settings start from.
+  EXPECT_EQ(defaults.time_budget_s, kDefaultTimeBudgetS);
+  EXPECT_EQ(defaults.finger_speed_mps, kDefaultFingerSpeedMps);
+  // A scenario that leaves `planner:` out gives its executor and its planners the same defaults.
+  const MoveExecutorConfig from_defaults = move_executor_config(defaults);
+  EXPECT_EQ(from_defaults.time_budget_s, PlanRequest{}.time_budget_s);
+  ASSERT_TRUE(from_defaults.finger_speed_mps.has_value());
+  EXPECT_EQ(*from_defaults.finger_speed_mps, PlannerOptions{}.finger_speed_mps);
+  EXPECT_EQ(planner_options(defaults).finger_speed_mps, PlannerOptions{}.finger_speed_mps);
+  EXPECT_EQ(make_planner(defaults)->name(), defaults.name);
 }
 
 TEST(PlannerSettings, ExecutorConfigTakesTheBudgetAndTheFingerSpeed) {
