@@ -33,8 +33,11 @@ agents::ChildProfile make_profile(const ChildSpec& spec, const agents::Populatio
 }
 
 agents::Population population_of(const Scenario& s) {
-  if (s.children.population == "pinsoro-cc") return agents::Population::pinsoro_child_child();
-  if (s.children.population == "pinsoro-cr") return agents::Population::pinsoro_child_robot();
+  switch (s.children.population) {
+    case agents::PopulationName::pinsoro_cc: return agents::Population::pinsoro_child_child();
+    case agents::PopulationName::pinsoro_cr: return agents::Population::pinsoro_child_robot();
+    case agents::PopulationName::pinsoro: break;
+  }
   return s.condition == Condition::ChildRobot ? agents::Population::pinsoro_child_robot()
                                       : agents::Population::pinsoro_child_child();
 }

@@ -137,6 +137,27 @@ TEST(Scenario, EnumNamesRoundTrip) {
   EXPECT_EQ(mode, stage::StageMode::dynamic);
 }
 
+TEST(Scenario, ChildrenPopulationIsAnEnumOfTheAgents) {
+  using agents::PopulationName;
+  for (const auto population : {PopulationName::pinsoro, PopulationName::pinsoro_cc, PopulationName::pinsoro_cr}) {
+    PopulationName read = population == PopulationName::pinsoro ? PopulationName::pinsoro_cr : PopulationName::pinsoro;
+    ASSERT_TRUE(from_string(to_string(population), read));
+    EXPECT_EQ(read, population);
+  }
+  PopulationName unchanged = PopulationName::pinsoro_cc;
+  EXPECT_FALSE(from_string("pinsoro_cc", unchanged));
+  EXPECT_EQ(unchanged, PopulationName::pinsoro_cc);
+  EXPECT_EQ(parse("name: cc\ncondition: child-child\n").children.population, PopulationName::pinsoro);
+  const auto cr = parse("name: cc\ncondition: child-child\nchildren: {population: pinsoro-cr}\n");
+  EXPECT_EQ(cr.children.population, PopulationName::pinsoro_cr);
+  EXPECT_EQ(cr.source["children"]["population"].as<std::string>(), "pinsoro-cr");
+  const auto bad = error_of("name: cc\ncondition: child-child\nchildren: {population: pinsoro-xx}\n");
+  EXPECT_NE(bad.find("'children.population': unknown value 'pinsoro-xx' (allowed: one of pinsoro, pinsoro-cc, "
+                     "pinsoro-cr)"),
+            std::string::npos)
+      << bad;
+}
+
 TEST(Scenario, PinsoroSpellingRoundTrips) {
   for (const auto condition : {Condition::ChildChild, Condition::ChildRobot}) {
     Condition read = condition == Condition::ChildChild ? Condition::ChildRobot : Condition::ChildChild;

@@ -3,12 +3,14 @@
 // cameras, rendering, recording, controller): one struct each, whose member initialisers are the defaults and whose
 // `visit` lists the keys, ranges and help once; the scenario parser composes their schemas and readers
 // (core/settings_archive.hpp). The planner's settings are declared by the planning library
-// (planning/planner_settings.hpp); the others still live here.
+// (planning/planner_settings.hpp) and the children's by the agents library (agents/children_settings.hpp); the others
+// still live here.
 
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "freeplay/agents/children_settings.hpp"
 #include "freeplay/agents/item_names.hpp"
 #include "freeplay/core/settings_archive.hpp"
 #include "freeplay/planning/planner_settings.hpp"
@@ -30,43 +32,10 @@ struct ScenarioVocabulary {
   bool operator==(const ScenarioVocabulary&) const = default;
 };
 
-/// An explicit child profile (absent fields are sampled from the population).
-struct ChildSpec {
-  std::optional<int> age;                    ///< years, 4–8
-  std::optional<std::string> gender;         ///< "female" | "male"
-  std::optional<double> sociability;         ///< 0–1
-  std::optional<double> assertiveness;       ///< 0–1
-  std::optional<double> attention_span;      ///< 0–1
-  std::optional<int> tablet_familiarity;     ///< 0, 1, 2
-
-  /// The keys of `children.purple` / `children.yellow`.
-  template <typename Archive>
-  void visit(Archive& a) {
-    a.optional("age", age, Schema::integer(4, 8), "years");
-    a.optional("gender", gender, Schema::enumeration({"female", "male"}));
-    a.optional("sociability", sociability, Schema::number(0, 1));
-    a.optional("assertiveness", assertiveness, Schema::number(0, 1));
-    a.optional("attention_span", attention_span, Schema::number(0, 1));
-    a.optional("tablet_familiarity", tablet_familiarity, Schema::integer(0, 2), "0 not familiar, 1 somewhat, 2 familiar");
-  }
-};
-
-/// `children:` who plays: the population and any explicit profile fields.
-struct ChildrenSettings {
-  std::string population = "pinsoro";  ///< population the children are sampled from
-  ChildSpec purple;                     ///< explicit purple profile fields
-  ChildSpec yellow;                     ///< explicit yellow profile fields (child-child only)
-
-  /// The keys of `children:`.
-  template <typename Archive>
-  void visit(Archive& a) {
-    a.field("population", population, Schema::enumeration({"pinsoro", "pinsoro-cc", "pinsoro-cr"}),
-            "population the children are sampled from");
-    a.optional("purple", purple, settings_schema<ChildSpec>(), "explicit fields of the purple child's profile");
-    a.optional("yellow", yellow, settings_schema<ChildSpec>(),
-               "explicit fields of the yellow child's profile (child-child)");
-  }
-};
+/// An explicit child profile (declared by the agents library, agents/children_settings.hpp).
+using agents::ChildSpec;
+/// `children:` who plays (declared by the agents library, agents/children_settings.hpp).
+using agents::ChildrenSettings;
 
 /// `robot:` the robot's play policy and body (child-robot only).
 struct RobotSettings {
