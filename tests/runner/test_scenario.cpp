@@ -20,6 +20,22 @@ std::string error_of(const std::string& text, const std::vector<std::string>& ov
   return "no error";
 }
 
+// Every one of `values` reads back from its own name (starting from another value, so that a reader that sets
+// nothing fails), and each of `bad` reads as none, leaving the value as it was.
+template <typename Enum>
+void expect_names_round_trip(std::initializer_list<Enum> values, std::initializer_list<std::string_view> bad) {
+  for (const Enum value : values) {
+    Enum read = value == *values.begin() ? *std::prev(values.end()) : *values.begin();
+    ASSERT_TRUE(from_string(to_string(value), read)) << to_string(value);
+    EXPECT_EQ(read, value);
+  }
+  for (const std::string_view text : bad) {
+    Enum unchanged = *values.begin();
+    EXPECT_FALSE(from_string(text, unchanged)) << text;
+    EXPECT_EQ(unchanged, *values.begin());
+  }
+}
+
 }  // namespace
 
 TEST(Scenario, MinimalFileGetsDefaults) {
@@ -106,47 +122,19 @@ TEST(Scenario, KindConditionAndModeAreReadOnceIntoTheirEnums) {
 }
 
 TEST(Scenario, EnumNamesRoundTrip) {
-  for (const auto condition : {Condition::ChildChild, Condition::ChildRobot, Condition::Controller}) {
-    Condition read = Condition::ChildChild;
-    ASSERT_TRUE(from_string(to_string(condition), read));
-    EXPECT_EQ(read, condition);
-  }
+  expect_names_round_trip({Condition::ChildChild, Condition::ChildRobot, Condition::Controller},
+                          {"robot-robot", "childrobot", ""});
   EXPECT_EQ(to_string(Condition::ChildRobot), "child-robot");
   EXPECT_EQ(pinsoro_name(Condition::ChildRobot), "childrobot");
   EXPECT_EQ(pinsoro_name(Condition::ChildChild), "childchild");
-  for (const auto kind : {ScenarioKind::episode, ScenarioKind::controller}) {
-    ScenarioKind read = ScenarioKind::episode;
-    ASSERT_TRUE(from_string(to_string(kind), read));
-    EXPECT_EQ(read, kind);
-  }
-  for (const auto mode : {stage::StageMode::kinematic, stage::StageMode::dynamic}) {
-    stage::StageMode read = stage::StageMode::kinematic;
-    ASSERT_TRUE(from_string(to_string(mode), read));
-    EXPECT_EQ(read, mode);
-  }
-  Condition unchanged = Condition::ChildRobot;
-  EXPECT_FALSE(from_string("robot-robot", unchanged));
-  EXPECT_EQ(unchanged, Condition::ChildRobot);
-  ScenarioKind kind = ScenarioKind::controller;
-  EXPECT_FALSE(from_string("session", kind));
-  EXPECT_FALSE(from_string("Controller", kind));
-  EXPECT_EQ(kind, ScenarioKind::controller);
-  stage::StageMode mode = stage::StageMode::dynamic;
-  EXPECT_FALSE(from_string("physics", mode));
-  EXPECT_FALSE(from_string("", mode));
-  EXPECT_EQ(mode, stage::StageMode::dynamic);
+  expect_names_round_trip({ScenarioKind::episode, ScenarioKind::controller}, {"session", "Controller"});
+  expect_names_round_trip({stage::StageMode::kinematic, stage::StageMode::dynamic}, {"physics", ""});
 }
 
 TEST(Scenario, ChildrenPopulationIsAnEnumOfTheAgents) {
   using agents::PopulationName;
-  for (const auto population : {PopulationName::pinsoro, PopulationName::pinsoro_cc, PopulationName::pinsoro_cr}) {
-    PopulationName read = population == PopulationName::pinsoro ? PopulationName::pinsoro_cr : PopulationName::pinsoro;
-    ASSERT_TRUE(from_string(to_string(population), read));
-    EXPECT_EQ(read, population);
-  }
-  PopulationName unchanged = PopulationName::pinsoro_cc;
-  EXPECT_FALSE(from_string("pinsoro_cc", unchanged));
-  EXPECT_EQ(unchanged, PopulationName::pinsoro_cc);
+  expect_names_round_trip({PopulationName::pinsoro, PopulationName::pinsoro_cc, PopulationName::pinsoro_cr},
+                          {"pinsoro_cc", "PInSoRo"});
   EXPECT_EQ(parse("name: cc\ncondition: child-child\n").children.population, PopulationName::pinsoro);
   const auto cr = parse("name: cc\ncondition: child-child\nchildren: {population: pinsoro-cr}\n");
   EXPECT_EQ(cr.children.population, PopulationName::pinsoro_cr);
