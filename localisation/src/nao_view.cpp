@@ -1,6 +1,7 @@
 #include "freeplay/localisation/nao_view.hpp"
 
 #include "freeplay/core/error.hpp"
+#include "freeplay/stage/stage_state.hpp"
 
 namespace freeplay::localisation {
 
@@ -14,11 +15,10 @@ Eigen::Isometry3d sandtray_T_odom(const stage::StageModel& model) {
 }
 
 Eigen::Isometry3d odom_T_shoulder(const stage::Stage& stage) {
-  const mjData* d = stage.data();
   const int shoulder = stage.model().nao().rshoulder_body;
   Eigen::Isometry3d sandtray_T_shoulder = Eigen::Isometry3d::Identity();
-  sandtray_T_shoulder.translation() = Eigen::Map<const Eigen::Vector3d>(d->xpos + 3 * shoulder);
-  sandtray_T_shoulder.linear() = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(d->xmat + 9 * shoulder);
+  sandtray_T_shoulder.translation() = stage::body_pose(stage, shoulder).translation();
+  sandtray_T_shoulder.linear() = stage::body_rotation(stage, shoulder);
   return sandtray_T_odom(stage.model()).inverse() * sandtray_T_shoulder;
 }
 

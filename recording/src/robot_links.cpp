@@ -4,24 +4,16 @@
 
 #include "freeplay/core/error.hpp"
 #include "freeplay/stage/nao_description.hpp"
+#include "freeplay/stage/stage_state.hpp"
 
 namespace freeplay::recording {
 
 namespace {
 
-Eigen::Isometry3d body_pose(const mjData* d, int body) {
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.translation() = Eigen::Vector3d(d->xpos[3 * body], d->xpos[3 * body + 1], d->xpos[3 * body + 2]);
-  pose.linear() = Eigen::Quaterniond(d->xquat[4 * body], d->xquat[4 * body + 1], d->xquat[4 * body + 2],
-                                     d->xquat[4 * body + 3])
-                      .normalized()
-                      .toRotationMatrix();
-  return pose;
-}
-
-std::string body_name(const mjModel* m, int body) {
-  const char* name = mj_id2name(m, mjOBJ_BODY, body);
-  return name != nullptr ? name : fmt::format("body{}", body);
+// The MuJoCo name of `body`, or "body<id>" when it has none.
+std::string link_name(const stage::StageModel& model, int body) {
+  std::string name = stage::body_name(model, body);
+  return !name.empty() ? name : fmt::format("body{}", body);
 }
 
 }  // namespace
@@ -31,10 +23,10 @@ NaoLinkFrames::NaoLinkFrames(double arm_reach_m) {
   config.scene = stage::SceneKind::child_robot;
   config.arm_reach = arm_reach_m;
   stage_ = std::make_unique<stage::Stage>(stage::StageModel::create(config), stage::StageMode::kinematic);
-  const mjModel* m = stage_->model().mj();
-  const int torso = stage_->model().nao().torso_body;
-  for (int b = 1; b < m->nbody; ++b) {  // MuJoCo numbers bodies parents first
-    for (int a = m->body_parentid[b]; a > 0; a = m->body_parentid[a]) {
+  const stage::StageModel& model = stage_->model();
+  const int torso = model.nao().torso_body;
+  for (int b = 1; b < stage::body_count(model); ++b) {  // MuJoCo numbers bodies parents first
+    for (int a = stage::body_parent(model, b); a > 0; a = stage::body_parent(model, a)) {
       if (a == torso) {
         link_bodies_.push_back(b);
         break;
@@ -57,16 +49,16 @@ const std::vector<LinkTransform>& NaoLinkFrames::compute(const std::vector<std::
     }
     qpos.emplace_back(nao.qpos[static_cast<std::size_t>(joint)], positions[i]);
   }
-  for (const auto& [address, value] : qpos) stage_->data()->qpos[address] = value;
+  for (const auto& [address, value] : qpos) stage::set_qpos(*stage_, address, value);
   stage_->update_kinematics();
-  const mjModel* m = stage_->model().mj();
-  const mjData* d = stage_->data();
+  const stage::StageModel& model = stage_->model();
   out_.clear();
-  out_.push_back({"sandtray", "base_link", body_pose(d, nao.torso_body)});
-  out_.push_back({"base_link", body_name(m, nao.torso_body), Eigen::Isometry3d::Identity()});
+  out_.push_back({"sandtray", "base_link", stage::body_pose(*stage_, nao.torso_body)});
+  out_.push_back({"base_link", link_name(model, nao.torso_body), Eigen::Isometry3d::Identity()});
   for (const int b : link_bodies_) {
-    const int parent = m->body_parentid[b];
-    out_.push_back({body_name(m, parent), body_name(m, b), body_pose(d, parent).inverse() * body_pose(d, b)});
+    const int parent = stage::body_parent(model, b);
+    out_.push_back({link_name(model, parent), link_name(model, b),
+                    stage::body_pose(*stage_, parent).inverse() * stage::body_pose(*stage_, b)});
   }
   return out_;
 }

@@ -1,7 +1,6 @@
 #include "freeplay/runner/controller_episode.hpp"
 
 #include <fmt/format.h>
-#include <mujoco/mujoco.h>
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -25,8 +24,10 @@
 #include "freeplay/sim/screen.hpp"
 #include "freeplay/stage/nao_controller.hpp"
 #include "freeplay/stage/nao_description.hpp"
+#include "freeplay/stage/nao_self_collision.hpp"
 #include "freeplay/stage/stage.hpp"
 #include "freeplay/stage/stage_model.hpp"
+#include "freeplay/stage/stage_state.hpp"
 
 namespace freeplay::runner {
 
@@ -70,96 +71,6 @@ std::string_view kind_name(Target::Kind kind) {
   return "?";
 }
 
-std::uint64_t state_hash(const mjModel* m, const mjData* d) {
-  const auto bytes = [](const mjtNum* p, int n) {
-    return std::string_view(reinterpret_cast<const char*>(p), static_cast<std::size_t>(n) * sizeof(mjtNum));
-  };
-  return fnv1a64(bytes(d->qvel, m->nv), fnv1a64(bytes(d->qpos, m->nq)));
-}
-
-/// Pairs of Nao geoms that may collide: different bodies, not adjacent (through geom-less bodies), and apart in
-/// StandZero (pairs that overlap there are part of the primitive shell, as MoveIt's "default" collision pairs).
-class SelfCollisionChecker {
- public:
-  SelfCollisionChecker(const mjModel* m, const stage::NaoIndex& nao) : model_(m) {
-    std::vector<int> geoms;
-    for (int g = 0; g < m->ngeom; ++g) {
-      if (m->body_rootid[m->geom_bodyid[g]] == nao.torso_body) geoms.push_back(g);
-    }
-    const auto geom_parent = [m](int body) {
-      int b = m->body_parentid[body];
-      while (b > 0 && m->body_geomnum[b] == 0) b = m->body_parentid[b];
-      return b;
-    };
-    mjData* scratch = mj_makeData(m);
-    const auto& zero = stage::posture_angles(stage::NaoPosture::StandZero);
-    for (int j = 0; j < kNaoJointCount; ++j) {
-      const int joint = nao.joint[static_cast<std::size_t>(j)];
-      scratch->qpos[nao.qpos[static_cast<std::size_t>(j)]] =
-          std::clamp(zero[static_cast<std::size_t>(j)], m->jnt_range[2 * joint], m->jnt_range[2 * joint + 1]);
-    }
-    mj_kinematics(m, scratch);
-    for (std::size_t a = 0; a < geoms.size(); ++a) {
-      for (std::size_t b = a + 1; b < geoms.size(); ++b) {
-        const int ba = m->geom_bodyid[geoms[a]];
-        const int bb = m->geom_bodyid[geoms[b]];
-        if (ba == bb || geom_parent(ba) == bb || geom_parent(bb) == ba) continue;
-        if (penetration(scratch, geoms[a], geoms[b]) < 0.0) continue;  // overlapping in StandZero: structural
-        pairs_.push_back({geoms[a], geoms[b]});
-      }
-    }
-    mj_deleteData(scratch);
-    colliding_.assign(pairs_.size(), false);
-  }
-
-  /// Names ("geom/geom") of every pair that collided so far.
-  const std::set<std::string>& hit() const { return hit_; }
-  /// Number of pairs checked.
-  std::size_t pairs() const { return pairs_.size(); }
-
-  /// Checks every pair in `d`'s current poses; returns how many pairs newly started colliding and sets `any`.
-  int update(const mjData* d, bool& any) {
-    int onsets = 0;
-    any = false;
-    for (std::size_t i = 0; i < pairs_.size(); ++i) {
-      const bool now = penetration(d, pairs_[i].first, pairs_[i].second) < -kPenetrationM;
-      if (now && !colliding_[i]) {
-        ++onsets;
-        const char* a = mj_id2name(model_, mjOBJ_GEOM, pairs_[i].first);
-        const char* b = mj_id2name(model_, mjOBJ_GEOM, pairs_[i].second);
-        hit_.insert(fmt::format("{}/{}", a != nullptr ? a : "?", b != nullptr ? b : "?"));
-      }
-      colliding_[i] = now;
-      any = any || now;
-    }
-    return onsets;
-  }
-
- private:
-  // Smallest signed distance between two geoms (m; negative = penetration), +inf when far apart.
-  double penetration(const mjData* d, int g1, int g2) const {
-    const mjModel* m = model_;
-    const Eigen::Map<const Eigen::Vector3d> p1(d->geom_xpos + 3 * g1);
-    const Eigen::Map<const Eigen::Vector3d> p2(d->geom_xpos + 3 * g2);
-    if ((p1 - p2).norm() > m->geom_rbound[g1] + m->geom_rbound[g2] + 0.01) return std::numeric_limits<double>::infinity();
-    int a = g1;
-    int b = g2;
-    if (m->geom_type[a] > m->geom_type[b]) std::swap(a, b);
-    const mjfCollision collide = mjCOLLISIONFUNC[m->geom_type[a]][m->geom_type[b]];
-    if (collide == nullptr) return std::numeric_limits<double>::infinity();
-    std::array<mjContact, mjMAXCONPAIR> contacts{};
-    const int n = collide(m, d, contacts.data(), a, b, 0.0);
-    double smallest = std::numeric_limits<double>::infinity();
-    for (int i = 0; i < n; ++i) smallest = std::min(smallest, contacts[static_cast<std::size_t>(i)].dist);
-    return smallest;
-  }
-
-  const mjModel* model_;
-  std::vector<std::pair<int, int>> pairs_;
-  std::vector<bool> colliding_;
-  std::set<std::string> hit_;
-};
-
 double max_of(const std::vector<double>& v) {
   if (v.empty()) return kNaN;
   return *std::max_element(v.begin(), v.end());
@@ -173,7 +84,7 @@ class ControllerEpisode {
         stage_model_(make_stage_model(scenario)),
         stage_(stage_model_, spec_.mode),
         nao_(stage_), tray_(models.catalogue, sim::SandtrayConfig{}, seeds_.stream("sandtray")),
-        collisions_(stage_model_->mj(), stage_model_->nao()) {
+        collisions_(*stage_model_, kPenetrationM) {
     dynamic_ = stage_.mode() == stage::StageMode::dynamic;
     nao_.go_to_posture(stage::NaoPosture::StandInit);
     stage_.update_kinematics();
@@ -185,14 +96,9 @@ class ControllerEpisode {
     const auto disc = nao_.arm_reach();
     executor_ = make_move_executor(scenario, disc.centre, disc.radius);
     planner_rng_ = seeds_.stream("planner");
-    const mjModel* m = stage_model_->mj();
     trace_.interval_steps = spec_.trace_interval_steps;
     trace_.machine = trace_machine_kind();
-    trace_.qpos_names.assign(static_cast<std::size_t>(m->nq), "");
-    for (int j = 0; j < m->njnt; ++j) {
-      const char* name = mj_id2name(m, mjOBJ_JOINT, j);
-      trace_.qpos_names[static_cast<std::size_t>(m->jnt_qposadr[j])] = name != nullptr ? name : "";
-    }
+    trace_.qpos_names = stage::qpos_names(*stage_model_);
     set_profile_speeds();
     expand_targets();
   }
@@ -262,11 +168,10 @@ class ControllerEpisode {
   // The profile speed of each joint: speed_fraction × its velocity limit, and no faster than torque_fraction × its
   // effort limit can drive against the joint's damping.
   void set_profile_speeds() {
-    const mjModel* m = stage_model_->mj();
     const auto& nao = stage_model_->nao();
     for (int j = 0; j < kNaoJointCount; ++j) {
       const auto ju = static_cast<std::size_t>(j);
-      const double damping = m->dof_damping[nao.dof[ju]];
+      const double damping = stage::dof_damping(*stage_model_, nao.dof[ju]);
       double speed = spec_.speed_fraction * kVelocityLimit[ju];
       if (damping > 0.0) speed = std::min(speed, spec_.torque_fraction * kEffortLimit[ju] / damping);
       profile_speed_[ju] = speed;
@@ -291,7 +196,7 @@ class ControllerEpisode {
         nao_.set_joint_targets(reference_);
         stage_.step(1);
         ++steps_;
-        sample(stage_.data(), nullptr);
+        sample(nullptr);
         if (steps_ % spec_.trace_interval_steps == 0) checkpoint();
       }
     } else {
@@ -304,36 +209,36 @@ class ControllerEpisode {
       previous_q_ = q;
       const long before = steps_;
       steps_ += kControlSteps;
-      sample(stage_.data(), &velocity);
+      sample(&velocity);
       if (steps_ / spec_.trace_interval_steps != before / spec_.trace_interval_steps) checkpoint();
     }
     bool any = false;
-    collision_onsets_ += collisions_.update(stage_.data(), any);
+    collision_onsets_ += collisions_.update(stage_, any);
     if (any) collision_time_s_ += kControlDtS;
     ++control_ticks_;
   }
 
   // Records velocity, torque, joint-limit and tracking samples of the current state.
-  void sample(const mjData* d, const NaoJointVector* kinematic_velocity) {
-    const mjModel* m = stage_model_->mj();
+  void sample(const NaoJointVector* kinematic_velocity) {
     const auto& nao = stage_model_->nao();
     for (int j = 0; j < kNaoJointCount; ++j) {
       const auto ju = static_cast<std::size_t>(j);
-      const double q = d->qpos[nao.qpos[ju]];
-      const double v = kinematic_velocity != nullptr ? (*kinematic_velocity)[ju] : d->qvel[nao.dof[ju]];
+      const double q = stage::qpos(stage_, nao.qpos[ju]);
+      const double v = kinematic_velocity != nullptr ? (*kinematic_velocity)[ju] : stage::qvel(stage_, nao.dof[ju]);
       if (std::fabs(v) / kVelocityLimit[ju] > peak_velocity_fraction_) {
         peak_velocity_fraction_ = std::fabs(v) / kVelocityLimit[ju];
         peak_velocity_at_ = fmt::format("{} at {:.3f} s", stage::kNaoJointNames[ju], time());
       }
       const int actuator = nao.actuator[ju];
       if (dynamic_ && actuator >= 0 && j != kRHipYawPitch &&
-          std::fabs(d->actuator_force[actuator]) / kEffortLimit[ju] > peak_torque_fraction_) {
-        peak_torque_fraction_ = std::fabs(d->actuator_force[actuator]) / kEffortLimit[ju];
+          std::fabs(stage::actuator_force(stage_, actuator)) / kEffortLimit[ju] > peak_torque_fraction_) {
+        peak_torque_fraction_ = std::fabs(stage::actuator_force(stage_, actuator)) / kEffortLimit[ju];
         peak_torque_at_ = fmt::format("{} at {:.3f} s", stage::kNaoJointNames[ju], time());
       }
       if (!rad_joint(j)) continue;
       const int joint = nao.joint[ju];
-      const double margin = std::min(q - m->jnt_range[2 * joint], m->jnt_range[2 * joint + 1] - q);
+      const auto [lower, upper] = stage::joint_range(*stage_model_, joint);
+      const double margin = std::min(q - lower, upper - q);
       if (margin < limit_margin_) {
         limit_margin_ = margin;
         limit_margin_joint_ = std::string(stage::kNaoJointNames[ju]);
@@ -346,14 +251,12 @@ class ControllerEpisode {
   }
 
   void checkpoint() {
-    const mjModel* m = stage_model_->mj();
-    const mjData* d = stage_.data();
     TraceCheckpoint c;
     c.step = steps_;
     c.time = time();
-    c.hash = state_hash(m, d);
-    c.qpos.assign(d->qpos, d->qpos + m->nq);
-    c.qvel.assign(d->qvel, d->qvel + m->nv);
+    c.hash = stage::state_hash(stage_);
+    c.qpos = stage::qpos_all(stage_);
+    c.qvel = stage::qvel_all(stage_);
     trace_.checkpoints.push_back(std::move(c));
   }
 
@@ -363,7 +266,7 @@ class ControllerEpisode {
     double fastest = 0.0;
     for (int j = 0; j < kNaoJointCount; ++j) {
       if (!rad_joint(j)) continue;
-      fastest = std::max(fastest, std::fabs(stage_.data()->qvel[nao.dof[static_cast<std::size_t>(j)]]));
+      fastest = std::max(fastest, std::fabs(stage::qvel(stage_, nao.dof[static_cast<std::size_t>(j)])));
     }
     return dynamic_ ? fastest : (reference_ == goal_ ? 0.0 : 1e9);
   }
@@ -544,8 +447,7 @@ class ControllerEpisode {
 
   double gaze_error_deg(const Eigen::Vector3d& target) const {
     const auto& nao = stage_model_->nao();
-    const mjData* d = stage_.data();
-    const Eigen::Vector3d axis(d->xmat[9 * nao.head_body], d->xmat[9 * nao.head_body + 3], d->xmat[9 * nao.head_body + 6]);
+    const Eigen::Vector3d axis = stage::body_rotation(stage_, nao.head_body).col(0);
     const Eigen::Vector3d to = target - stage_.site_position(nao.gaze_site);
     const double c = std::clamp(axis.normalized().dot(to.normalized()), -1.0, 1.0);
     return std::acos(c) * 180.0 / 3.141592653589793;
@@ -606,7 +508,7 @@ class ControllerEpisode {
   stage::Stage stage_;
   stage::NaoController nao_;
   sim::Sandtray tray_;
-  SelfCollisionChecker collisions_;
+  stage::NaoSelfCollision collisions_;
   bool dynamic_ = true;
   std::vector<Target> targets_;
   NaoJointVector goal_{};
@@ -685,7 +587,7 @@ std::string trace_machine_kind() {
 #else
   const std::string compiler = "unknown-compiler";
 #endif
-  return fmt::format("{} {} mujoco-{}", arch, compiler, mj_version());
+  return fmt::format("{} {} mujoco-{}", arch, compiler, stage::mujoco_version_number());
 }
 
 ControllerEpisodeResult run_controller_episode(const Scenario& scenario, std::uint64_t seed,

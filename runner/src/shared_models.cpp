@@ -1,6 +1,5 @@
 // The default shared models and the robot body backed by the stage's MuJoCo Nao.
 
-#include <mujoco/mujoco.h>
 #include <spdlog/spdlog.h>
 
 #include "freeplay/agents/params.hpp"
@@ -8,6 +7,7 @@
 #include "freeplay/stage/nao_controller.hpp"
 #include "freeplay/stage/stage.hpp"
 #include "freeplay/stage/stage_model.hpp"
+#include "freeplay/stage/stage_state.hpp"
 
 namespace freeplay::runner {
 
@@ -53,14 +53,13 @@ class StageRobotBody final : public RobotBody {
 
   void joint_state(RobotSnapshot& snapshot) const override {
     const auto& nao = stage_.model().nao();
-    const mjData* d = stage_.data();
     const bool dynamic = stage_.mode() == stage::StageMode::dynamic;
     for (int j = 0; j < stage::kNaoJointCount; ++j) {
       const auto ju = static_cast<std::size_t>(j);
       snapshot.joint_names.emplace_back(stage::kNaoJointNames[ju]);
-      snapshot.positions.push_back(d->qpos[nao.qpos[ju]]);
-      snapshot.velocities.push_back(dynamic ? d->qvel[nao.dof[ju]] : 0.0);
-      snapshot.efforts.push_back(dynamic ? d->qfrc_actuator[nao.dof[ju]] : 0.0);
+      snapshot.positions.push_back(stage::qpos(stage_, nao.qpos[ju]));
+      snapshot.velocities.push_back(dynamic ? stage::qvel(stage_, nao.dof[ju]) : 0.0);
+      snapshot.efforts.push_back(dynamic ? stage::actuator_joint_force(stage_, nao.dof[ju]) : 0.0);
     }
   }
 

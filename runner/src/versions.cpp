@@ -2,7 +2,6 @@
 
 #include <box2d/b2_common.h>
 #include <fmt/format.h>
-#include <mujoco/mujoco.h>
 #include <ompl/config.h>
 #include <yaml-cpp/yaml.h>
 
@@ -11,6 +10,7 @@
 #include <opencv2/core/version.hpp>
 
 #include "freeplay/core/assets.hpp"
+#include "freeplay/stage/stage_state.hpp"
 
 namespace freeplay::runner {
 
@@ -19,7 +19,7 @@ nlohmann::json library_versions() {
           {"box2d", fmt::format("{}.{}.{}", b2_version.major, b2_version.minor, b2_version.revision)},
           {"opencv", CV_VERSION},
           {"ompl", fmt::format("{}.{}.{}", OMPL_MAJOR_VERSION, OMPL_MINOR_VERSION, OMPL_PATCH_VERSION)},
-          {"mujoco", mj_versionString()},
+          {"mujoco", stage::mujoco_version()},
           {"eigen", fmt::format("{}.{}.{}", EIGEN_WORLD_VERSION, EIGEN_MAJOR_VERSION, EIGEN_MINOR_VERSION)}};
 }
 

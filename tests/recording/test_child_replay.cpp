@@ -12,6 +12,7 @@
 #include "freeplay/recording/robot_links.hpp"
 #include "freeplay/recording/ros_messages.hpp"
 #include "freeplay/stage/nao_description.hpp"
+#include "freeplay/stage/stage_state.hpp"
 
 using namespace freeplay;
 using namespace freeplay::recording;
@@ -193,8 +194,7 @@ TEST(RobotLinks, LinkFramesEqualTheStageBodiesForTheRecordedJoints) {
   config.scene = stage::SceneKind::child_robot;
   stage::Stage stage(stage::StageModel::create(config), stage::StageMode::kinematic);
   for (std::size_t i = 0; i < names.size(); ++i) {
-    stage.data()->qpos[stage.model().nao().qpos[static_cast<std::size_t>(stage::nao_joint_index(names[i]))]] =
-        positions[i];
+    stage::set_qpos(stage, stage.model().nao().qpos[static_cast<std::size_t>(stage::nao_joint_index(names[i]))], positions[i]);
   }
   stage.update_kinematics();
   for (const char* name : {"torso", "Head", "RShoulder", "RElbow", "r_wrist", "r_gripper"}) {
@@ -204,19 +204,18 @@ TEST(RobotLinks, LinkFramesEqualTheStageBodiesForTheRecordedJoints) {
       sandtray_T_link = links.at(frame).second * sandtray_T_link;
       frame = links.at(frame).first;
     }
-    const int body = mj_name2id(stage.model().mj(), mjOBJ_BODY, name);
+    const int body = stage::body_id(stage.model(), name);
     ASSERT_GE(body, 0) << name;
-    const Eigen::Vector3d expected(stage.data()->xpos[3 * body], stage.data()->xpos[3 * body + 1],
-                                   stage.data()->xpos[3 * body + 2]);
+    const Eigen::Vector3d expected = stage::body_pose(stage, body).translation();
     EXPECT_LT((sandtray_T_link.translation() - expected).norm(), 1e-9) << name;
   }
   // The arm moved during the session: the recorded gripper is not where StandInit puts it.
   NaoLinkFrames rest;
   rest.compute({}, {});
-  const int gripper = mj_name2id(rest.stage().model().mj(), mjOBJ_BODY, "r_gripper");
-  const Eigen::Vector3d at_rest(rest.stage().data()->xpos + 3 * gripper);
-  const int body = mj_name2id(stage.model().mj(), mjOBJ_BODY, "r_gripper");
-  EXPECT_GT((Eigen::Vector3d(stage.data()->xpos + 3 * body) - at_rest).norm(), 1e-6);
+  const int gripper = stage::body_id(rest.stage().model(), "r_gripper");
+  const Eigen::Vector3d at_rest = stage::body_pose(rest.stage(), gripper).translation();
+  const int body = stage::body_id(stage.model(), "r_gripper");
+  EXPECT_GT((stage::body_pose(stage, body).translation() - at_rest).norm(), 1e-6);
   // The links are not items for the metric recomputation.
   const auto session = read_session(s.dir);
   for (const auto& [t, items] : session.item_positions) {
