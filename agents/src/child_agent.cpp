@@ -388,12 +388,14 @@ double ChildAgent::fitts_duration(double distance, double width) const {
   return age_factor * (m.fitts_a_s + m.fitts_b_s_per_bit * index);
 }
 
-int ChildAgent::pick_item(const ChildPerception& seen, const Vec2& near, bool partner_items, bool any_reachable) {
+int ChildAgent::pick_item(const ChildPerception& seen, const Vec2& near, bool partner_items, bool any_reachable,
+                          int respected_item) {
   int best = -1;
   double best_score = 1e9;
   for (int i = 0; i < seen.item_count; ++i) {
     const SeenItem& item = seen.items[static_cast<std::size_t>(i)];
     if (!reachable(item.position)) continue;
+    if (item.item == respected_item) continue;
     if (item.holder == HolderView::Me) continue;
     if (item.holder != HolderView::Nobody && !partner_items) continue;
     double score = (item.position - near).norm() + 0.05 * rng_.uniform();
@@ -473,7 +475,9 @@ void ChildAgent::plan_action(double t, const ChildPerception& seen, ChildActions
       index = pick_item(seen, partner_last_point_, false, false);
       destination = clamp_reachable(partner_last_point_ + Vec2(rng_.normal(0.0, 0.04), rng_.normal(0.0, 0.04)));
     } else {
-      index = pick_item(seen, focus, false, aimless);
+      // Young children respect prior possession: the item the partner is playing with is left to it unless the
+      // child means to take it (Hay & Ross 1982; Friedman & Neary 2008).
+      index = pick_item(seen, focus, false, aimless, partner_recent ? partner_last_item_ : -1);
       const bool tidy = rng_.bernoulli(0.03 + 0.1 * (1.0 - motivation_));
       if (tidy) {
         destination = clamp_reachable({rng_.uniform(sim::kStashMinX + 0.01, kScreenW - 0.02), -kScreenH / 2.0});

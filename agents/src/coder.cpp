@@ -14,6 +14,9 @@
 namespace freeplay::agents {
 namespace {
 
+/// Words about the play within the interaction hold that show a prosocial attitude.
+constexpr int kProsocialWords = 2;
+
 bool looks_at_other(const GazeTarget& gaze) {
   return gaze.kind == GazeKind::PartnerFace || gaze.kind == GazeKind::Robot;
 }
@@ -256,7 +259,10 @@ SocialAttitude PairCoder::attitude_candidate(double t, int who) const {
   // asks for its item, or takes an item after asking). Pro-social: the child's own interaction about the play, or
   // friendly acts often enough; a child keeping to itself is passive.
   if (t - me.last_directive_t <= params_.assertive_hold_s) return SocialAttitude::Assertive;
-  const bool friendly = interacting(t, who) || me.friendly >= params_.friendly_share;
+  // One remark is not an attitude: the child keeps the interaction up (words about the play, or a discussion).
+  const bool keeps_talking = me.interaction.since(t - params_.interaction_hold_s) >= kProsocialWords ||
+                             t - me.last_discussion_t <= params_.discussion_hold_s;
+  const bool friendly = keeps_talking || me.friendly >= params_.friendly_share;
   return friendly ? SocialAttitude::Prosocial : SocialAttitude::Passive;
 }
 
@@ -330,6 +336,8 @@ void PairCoder::code(double t, int who, Axis axis, std::uint8_t label) {
                           : axis == Axis::SocialAttitude ? params_.attitude_min_bout_s
                                                          : params_.min_bout_s;
   if (t - c.candidate_since < min_bout) return;
+  // A long bout anchors the coder: a new (not salient) label must also last a share of the bout it would end.
+  if (!salient && t - c.candidate_since < params_.anchoring * (c.candidate_since - c.bout_start)) return;
   // The coder marks the new sequence from where it visibly began.
   const double start = std::max(c.candidate_since, c.bout_start);
   if (start > c.bout_start) c.timeline.push_back({axis, c.label, c.bout_start, start});

@@ -90,6 +90,7 @@ std::vector<Fitted> fitted_parameters() {
   FREEPLAY_FITTED(coder.interaction_hold_s, Log, 2.0, 60.0);
   FREEPLAY_FITTED(coder.min_bout_s, Log, 1.0, 30.0);
   FREEPLAY_FITTED(coder.attitude_min_bout_s, Log, 1.0, 30.0);
+  FREEPLAY_FITTED(coder.anchoring, Log, 0.01, 1.0);
   FREEPLAY_FITTED(coder.watch_share, Logit, 0.05, 0.95);
 #undef FREEPLAY_FITTED
   const auto coupling = [&out](SocialEngagement label, Feature feature, const char* name) {

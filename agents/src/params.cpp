@@ -214,6 +214,7 @@ std::vector<Field> coder_fields(CoderParams& co) {
           {"adult_hold_s", &co.adult_hold_s, 0.1, 600},
           {"attitude_min_bout_s", &co.attitude_min_bout_s, 0, 600},
           {"salient_min_bout_s", &co.salient_min_bout_s, 0, 600},
+          {"anchoring", &co.anchoring, 0, 2},
           {"take_window_s", &co.take_window_s, 0.1, 600},
           {"adversarial_hold_s", &co.adversarial_hold_s, 0.1, 600},
           {"frustrated_hold_s", &co.frustrated_hold_s, 0.1, 600},

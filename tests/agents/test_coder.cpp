@@ -139,10 +139,11 @@ TEST(Coder, AttentionTheOtherNeverReturnsIsNoExchange) {
 }
 
 TEST(Coder, OneExchangeIsOneBoutForItsWindow) {
-  // One spoken exchange (two remarks each) in a minute of parallel play: one associative bout for each child while
-  // both its remarks lie within the interaction window, then parallel again.
+  // One spoken exchange (two remarks each) in a minute and a half of parallel play: one associative bout for each
+  // child, from the answer that makes it a conversation (two answers within the window) until the answers leave
+  // the interaction window, then parallel again.
   PairCoder coder(params().coder, false);
-  for (long tick = 0; tick < 600; ++tick) {
+  for (long tick = 0; tick < 900; ++tick) {
     const double t = tick * 0.1;
     ObservedPlayer a = plays(t, 0.1, 0);
     ObservedPlayer b = plays(t, 0.45, 5, 3.0);
@@ -151,7 +152,7 @@ TEST(Coder, OneExchangeIsOneBoutForItsWindow) {
     if (t > 31.0 && t < 37.0) b = speaks(b, t, Utterance::Comment, 4.0, 31.05);
     coder.observe(t, a, b);
   }
-  coder.finish(60.0);
+  coder.finish(90.0);
   for (int who = 0; who < 2; ++who) {
     int associative_bouts = 0;
     double associative_s = 0.0;
@@ -161,8 +162,8 @@ TEST(Coder, OneExchangeIsOneBoutForItsWindow) {
       associative_s += bout.stop - bout.start;
     }
     EXPECT_EQ(associative_bouts, 1);
-    // From each child's second remark until its first leaves the window.
-    EXPECT_NEAR(associative_s, params().coder.interaction_window_s - 4.0, 1.5);
+    // From the second answer (a's second remark, 34 s) until it leaves the window (only one answer is left then).
+    EXPECT_NEAR(associative_s, params().coder.interaction_window_s, 1.5);
   }
 }
 
@@ -224,6 +225,47 @@ TEST(Coder, PlayingAloneIsPassiveAndTalkingTogetherIsProsocial) {
            Axis::SocialAttitude);
   EXPECT_GT(share(together[0], SocialAttitude::Prosocial), 0.8);
   EXPECT_GT(share(together[1], SocialAttitude::Prosocial), 0.8);
+}
+
+TEST(Coder, OneRemarkFromAChildKeepingToItselfIsNoAttitudeButTalkKeptUpIs) {
+  // "Pro-social: the child's own interaction about the play": one comment in two minutes of playing alone is not
+  // an attitude; comments kept up (one every 6 s) are.
+  const auto once = code(
+      [](double t) {
+        ObservedPlayer o = plays(t, 0.10, 0);
+        if (t > 30.0 && t < 31.0) o = speaks(o, t, Utterance::Comment, 100.0, 30.05);
+        return o;
+      },
+      [](double t) { return plays(t, 0.45, 5, 3.0); }, 120, false, Axis::SocialAttitude);
+  EXPECT_GT(share(once[0], SocialAttitude::Passive), 0.95);
+  const auto kept_up = code([](double t) { return speaks(plays(t, 0.10, 0), t, Utterance::Comment, 6.0, 0.0); },
+                            [](double t) { return plays(t, 0.45, 5, 3.0); }, 120, false, Axis::SocialAttitude);
+  EXPECT_GT(share(kept_up[0], SocialAttitude::Prosocial), 0.8);
+}
+
+TEST(Coder, AnAnchoredCoderNeedsALongerChangeToEndALongBout) {
+  // After 100 s of playing alone, 8 s of talk (longer than the attitude's minimum bout) ends the passive bout for
+  // a coder without anchoring, but not for one that asks a change to last a quarter of the bout it ends.
+  const auto script = [](double t) {
+    ObservedPlayer o = plays(t, 0.10, 0);
+    if (t >= 100.0 && t < 108.0) o = speaks(o, t, Utterance::Comment, 2.0, 100.05);
+    return o;
+  };
+  const auto bouts = [&](double anchoring) {
+    CoderParams p = params().coder;
+    p.anchoring = anchoring;
+    p.attitude_min_bout_s = 3.0;
+    p.interaction_hold_s = 4.0;
+    PairCoder coder(p, true);
+    for (long tick = 0; tick < 1500; ++tick) {
+      const double t = static_cast<double>(tick) * 0.1;
+      coder.observe(t, script(t), idles(t));
+    }
+    coder.finish(150.0);
+    return coder.timeline(0, Axis::SocialAttitude).size();
+  };
+  EXPECT_GE(bouts(0.0), 3u);
+  EXPECT_EQ(bouts(0.25), 1u);
 }
 
 TEST(Coder, DirectingTheOthersPlayInAnExchangeIsAssertive) {

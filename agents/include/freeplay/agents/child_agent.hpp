@@ -115,7 +115,8 @@ class ChildAgent {
   Vec2 clamp_reachable(const Vec2& p) const;
   Vec2 random_own_point();
   double fitts_duration(double distance, double width) const;
-  int pick_item(const ChildPerception& seen, const Vec2& near, bool partner_items, bool any_reachable);
+  int pick_item(const ChildPerception& seen, const Vec2& near, bool partner_items, bool any_reachable,
+                int respected_item = -1);
   Vec2 habitat_destination(const ChildPerception& seen, int item);
   void start_drag(double t, const Vec2& from, const Vec2& to, int item);
   void start_stroke(double t, const Vec2& centre, bool fill);

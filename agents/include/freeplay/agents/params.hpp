@@ -174,6 +174,7 @@ struct CoderParams {
   double adult_hold_s = 5.0;         ///< a look or a word to the experimenter shows adult seeking this long (s)
   double attitude_min_bout_s = 6.0;  ///< social attitude: a new label must hold this long before the coder switches (s)
   double salient_min_bout_s = 2.0;   ///< the same for the salient attitudes, frustrated and adversarial (s)
+  double anchoring = 0.0;            ///< a new label must also hold this share of the bout it ends (long bouts anchor)
   double take_window_s = 10.0;       ///< an item the other player held this recently is still the other's (s)
   double adversarial_hold_s = 6.0;   ///< taking the other's item shows an adversarial attitude this long (s)
   double frustrated_hold_s = 3.0;    ///< a protest shows frustration this long (s)
