@@ -806,7 +806,10 @@ void ChildAgent::sustain_joint_play(double t) {
   const auto s = static_cast<std::size_t>(Axis::SocialEngagement);
   const bool partner_playing = t - partner_last_touch_t_ < params_->coder.active_window_s;
   if (labels_.social == SocialEngagement::Associative || labels_.social == SocialEngagement::Cooperative) {
-    if (t - std::max(last_answered_t_, bout_start_[s]) <= reciprocity_window()) return;
+    // How long a child waits for an answer before it gives up on joint play depends on how sure it is that the
+    // partner answers at all: a partner it has found unresponsive is not waited for.
+    const double patience = reciprocity_window() * contingency_.link_probability();
+    if (t - std::max(last_answered_t_, bout_start_[s]) <= patience) return;
     ++counters_.joint_play_lapses;
     // Joint play winds down a step at a time: cooperation without answers falls back to talking about the play
     // (which lapses in turn when that goes unanswered too), talk to play side by side or alone.

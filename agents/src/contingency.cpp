@@ -216,9 +216,35 @@ double ContingencyDetector::attributable_share() const {
 }
 
 double ContingencyDetector::contingency() const {
-  return weighted([this](const Rates& r) {
+  return link_probability() * weighted([this](const Rates& r) {
     return shrunk(r, [](double p1, double p0) { return p0 < 1.0 ? std::clamp((p1 - p0) / (1.0 - p0), 0.0, 1.0) : 0.0; });
   });
+}
+
+namespace {
+
+/// log B(a, b), the Beta function.
+double log_beta(double a, double b) { return std::lgamma(a) + std::lgamma(b) - std::lgamma(a + b); }
+
+}  // namespace
+
+double ContingencyDetector::link_probability() const {
+  // Causal support (Griffiths & Tenenbaum 2005): the log Bayes factor of two answer rates (after my bids, and in
+  // the probe windows without them), each with a uniform prior, against one rate for both. The Occam penalty of
+  // the second rate makes a partner whose acts are as frequent after my bids as without them *less* likely to be
+  // responsive the more it is observed; an answer rate below the base rate is evidence against a response too.
+  double support = 0.0;
+  for (const Rates& r : rates_) {
+    if (r.bids <= 0.0 || r.probes <= 0.0) continue;
+    const double a = r.answered;
+    const double h = r.probe_hits;
+    const double log_bf = log_beta(a + 1.0, r.bids - a + 1.0) + log_beta(h + 1.0, r.probes - h + 1.0) -
+                          log_beta(a + h + 1.0, r.bids + r.probes - a - h + 1.0);
+    support += a / r.bids > h / r.probes ? log_bf : -std::fabs(log_bf);
+  }
+  const double prior = params_->prior_link_probability;
+  const double log_odds = std::clamp(support + std::log(prior / (1.0 - prior)), -30.0, 30.0);
+  return 1.0 / (1.0 + std::exp(-log_odds));
 }
 
 int ContingencyDetector::take_unanswered() { return std::exchange(unanswered_new_, 0); }

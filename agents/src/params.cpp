@@ -182,6 +182,7 @@ std::vector<Field> contingency_fields(ContingencyParams& c) {
           {"prior_answered_share", &c.prior_answered_share, 0, 1},
           {"prior_free_time_s", &c.prior_free_time_s, 0, 3600},
           {"prior_base_rate_per_min", &c.prior_base_rate_per_min, 0, 600},
+          {"prior_link_probability", &c.prior_link_probability, 0.001, 0.999},
           {"non_contingent_weight", &c.non_contingent_weight, 0, 10},
           {"habituation_rate", &c.habituation_rate, 0, 1},
           {"habituation_recovery_s", &c.habituation_recovery_s, 0, 36000},

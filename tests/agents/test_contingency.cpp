@@ -92,6 +92,37 @@ TEST(Contingency, APartnerThatNeverActsIsNotContingent) {
   EXPECT_LT(d.contingency(), 0.1) << "only what is left of the prior's benefit of the doubt";
 }
 
+TEST(Contingency, EvidenceMakesAResponderSurelyResponsiveAndATimetableSurelyNot) {
+  // Causal support (Griffiths & Tenenbaum 2005): the longer a child watches, the surer it is whether the partner
+  // responds at all. Before any bid the prior holds; a responder's link probability rises towards 1, a partner on
+  // a timetable's falls (the Occam penalty of a second answer rate that the counts do not need).
+  const ContingencyParams params = shipped();
+  EXPECT_DOUBLE_EQ(ContingencyDetector(params).link_probability(), params.prior_link_probability);
+  double due = -1.0;
+  const auto answers = [&due](double t, bool bid, ContingencyDetector& d) {
+    if (bid) due = t + 1.0;
+    if (due > 0.0 && t >= due) {
+      d.on_partner_act(t, PartnerActKind::LookAtMe, -1, {0.0, 0.0});
+      due = -1.0;
+    }
+  };
+  EXPECT_GT(run(params, answers, 1.0).link_probability(), params.prior_link_probability);
+  EXPECT_GT(run(params, answers, 5.0).link_probability(), 0.99);
+  double next = 1.0;
+  const auto periodic = [&next](double t, bool, ContingencyDetector& d) {
+    if (t >= next) {
+      d.on_partner_act(t, PartnerActKind::LookAtMe, -1, {0.0, 0.0});
+      next += 4.0;
+    }
+  };
+  const double after_2 = run(params, periodic, 2.0).link_probability();
+  next = 1.0;
+  const double after_10 = run(params, periodic, 10.0).link_probability();
+  EXPECT_LT(after_2, params.prior_link_probability);
+  EXPECT_LT(after_10, after_2);
+  EXPECT_LT(after_10, 0.2);
+}
+
 TEST(Contingency, AnActElsewhereDoesNotAnswerAPlayBid) {
   const ContingencyParams params = shipped();
   ContingencyDetector d(params);

@@ -61,8 +61,12 @@ class ContingencyDetector {
   /// `interruption_tau_s`, decaying).
   double on_interruption();
 
-  /// Contingency estimate in [0, 1]: (P(act | bid) − P(act | no bid)) / (1 − P(act | no bid)), clamped.
+  /// Contingency estimate in [0, 1]: how likely the partner responds to me at all (`link_probability`) times how
+  /// strongly, (P(act | bid) − P(act | no bid)) / (1 − P(act | no bid)), clamped.
   double contingency() const;
+  /// P(the partner's acts depend on my bids | the counts): the prior odds times the Bayes factor of "my bids raise
+  /// its acts" against "its acts come at one rate, bids or not" (causal support), summed over the kinds of bid.
+  double link_probability() const;
   /// The share of the answers to my bids that the partner's base rate does not explain, (p₁ − p₀) / p₁ in [0, 1]
   /// (averaged over the kinds of bid): how likely an act that followed my bid was a response to it.
   double attributable_share() const;

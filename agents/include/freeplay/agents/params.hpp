@@ -141,6 +141,7 @@ struct ContingencyParams {
   double prior_answered_share = 0.5;    ///< prior P(a bid is answered)
   double prior_free_time_s = 20.0;      ///< weight of the prior base rate, in seconds of probe windows
   double prior_base_rate_per_min = 3.0; ///< prior rate of the partner's acts that could answer me (1/min)
+  double prior_link_probability = 0.5; ///< prior P(the partner responds to me at all), before any evidence
   double non_contingent_weight = 0.3;   ///< motivating effect of fresh non-contingent attention, relative to a response
   double habituation_rate = 0.3;        ///< each non-contingent stimulus multiplies its salience by (1 − rate)
   double habituation_recovery_s = 600.0;///< salience recovers towards 1 with this time constant (s)
