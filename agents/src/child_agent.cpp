@@ -146,6 +146,12 @@ void ChildAgent::observe(double t, double dt, const ChildPerception& seen) {
   for (int n = contingency_.take_unanswered(); n > 0; --n) {
     ++counters_.unanswered_bids;
     motivation_ -= params_->drives.unanswered_bid_drop * motivation_;
+    // "Frustrated: reluctant or refusing to engage ... because of a perceived lack of fairness or attention from
+    // their peer" (the coding scheme): a bid left unanswered may make the child frustrated (it protests).
+    if (labels_.attitude != SocialAttitude::Frustrated && !quit_ &&
+        rng_.bernoulli(params_->reactions.unanswered_frustration_probability)) {
+      switch_label(Axis::SocialAttitude, static_cast<std::size_t>(SocialAttitude::Frustrated), t);
+    }
   }
   counters_.bids_answered += contingency_.take_answered();
   counters_.contingency_s += dt * contingency_.contingency();
@@ -736,6 +742,7 @@ void ChildAgent::update_speech(double t, double dt, ChildActions& out) {
   double rate = e.speech_per_min[static_cast<std::size_t>(labels_.social)] *
                 std::exp(0.5 * feature(Feature::Sociability));
   if (partner_robot_) rate += e.robot_curiosity_per_min * std::exp(-t / (60.0 * params_->drives.novelty_tau_min));
+  if (labels_.task == TaskEngagement::NoPlay) rate *= e.noplay_speech_share;  // out of the game, quieter
   rate *= bid_scale();
   if (rng_.bernoulli(rate * dt / 60.0)) {
     // The attitude shows in what is said: an assertive child directs the play, a passive one hardly proposes.

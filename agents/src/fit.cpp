@@ -83,6 +83,9 @@ std::vector<Fitted> fitted_parameters() {
   FREEPLAY_FITTED(expression.partner_face_share[3], Logit, 0.01, 0.9);
   FREEPLAY_FITTED(expression.partner_face_share[4], Logit, 0.01, 0.9);
   FREEPLAY_FITTED(expression.noplay_watch_share, Logit, 0.01, 0.99);
+  FREEPLAY_FITTED(expression.noplay_speech_share, Logit, 0.02, 0.999);
+  FREEPLAY_FITTED(reactions.unanswered_frustration_probability, Logit, 0.001, 0.5);
+  FREEPLAY_FITTED(reactions.frustrated_weight, Log, 0.1, 10.0);
   FREEPLAY_FITTED(reactions.take_reaction_probability, Logit, 0.01, 0.99);
   FREEPLAY_FITTED(motor.action_gap_median_s[1], Log, 0.5, 30.0);
   // The coder's windows: how long a human coder holds a label on evidence (set on the child-child bouts before too).

@@ -111,6 +111,7 @@ std::vector<Field> drive_fields(DriveParams& d) {
 /// The scalar fields of the `reactions` section.
 std::vector<Field> reaction_fields(ReactionParams& re) {
   return {{"take_reaction_probability", &re.take_reaction_probability, 0, 1},
+          {"unanswered_frustration_probability", &re.unanswered_frustration_probability, 0, 1},
           {"frustrated_weight", &re.frustrated_weight, 0, 1e3},
           {"adversarial_weight", &re.adversarial_weight, 0, 1e3},
           {"assertive_weight", &re.assertive_weight, 0, 1e3},
@@ -144,6 +145,7 @@ std::vector<Field> expression_fields(ExpressionParams& e) {
           {"robot_curiosity_per_min", &e.robot_curiosity_per_min, 0, 60},
           {"robot_novelty_face_share", &e.robot_novelty_face_share, 0, 1},
           {"noplay_watch_share", &e.noplay_watch_share, 0, 1},
+          {"noplay_speech_share", &e.noplay_speech_share, 0, 1},
           {"syllables_mean", &e.syllables_mean, 1, 50},
           {"articulation_rate_at_3", &e.articulation_rate_at_3, 0.5, 10},
           {"articulation_rate_per_year", &e.articulation_rate_per_year, 0, 1}};

@@ -262,6 +262,31 @@ TEST(ChildAgent, LeavesAloneTheItemThePartnerIsPlayingWith) {
   EXPECT_LE(grabs_of_it, grabs / 40) << grabs_of_it << " of " << grabs;
 }
 
+TEST(ChildAgent, BidsLeftUnansweredCanFrustrate) {
+  // "Frustrated: ... because of a perceived lack of fairness or attention from their peer" (the coding scheme): the
+  // test partner never answers; with a chance of frustration per unanswered bid the child protests, without it not.
+  const auto protests = [](double probability) {
+    ChildModelParams p = params();
+    p.reactions.unanswered_frustration_probability = probability;
+    int total = 0;
+    for (std::uint64_t seed = 0; seed < 20; ++seed) {
+      ChildProfile profile;
+      profile.age_years = 6;
+      ChildAgent child(p, profile, Seat::Bottom, Rng(seed));
+      TestWorld world;
+      ChildPerception seen;
+      for (int tick = 0; tick < 6000 && !child.wants_to_stop(); ++tick) {
+        world.perceive(seen);
+        world.apply(tick * 0.1, child.step(tick * 0.1, 0.1, seen));
+      }
+      total += world.protests;
+    }
+    return total;
+  };
+  EXPECT_EQ(protests(0.0), 0);
+  EXPECT_GT(protests(0.3), 10);
+}
+
 TEST(ChildAgent, SameSeedSameChild) {
   const SessionResult a = simulate_session(params(), SessionConfig{}, 99);
   const SessionResult b = simulate_session(params(), SessionConfig{}, 99);
