@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <thread>
 
+#include "freeplay/core/statistics.hpp"
+
 namespace freeplay::runner {
 
 namespace {
@@ -151,19 +153,17 @@ EpisodeResult LiveEpisode::run(const EpisodeInputs& inputs) {
 }
 
 PacingTiming LiveEpisode::timing() const {
-  std::vector<double> sorted;
+  std::vector<double> late_ms;
   {
     std::lock_guard lock(mutex_);
-    sorted = lateness_ms_;
+    late_ms = lateness_ms_;
   }
   PacingTiming out;
-  out.ticks = sorted.size();
-  if (sorted.empty()) return out;
-  std::sort(sorted.begin(), sorted.end());
-  auto at = [&](double q) { return sorted[static_cast<std::size_t>(q * static_cast<double>(sorted.size() - 1))]; };
-  out.p50_late_ms = at(0.5);
-  out.p99_late_ms = at(0.99);
-  out.max_late_ms = sorted.back();
+  out.ticks = late_ms.size();
+  if (late_ms.empty()) return out;
+  out.p50_late_ms = median(late_ms);
+  out.p99_late_ms = quantile(late_ms, 0.99);
+  out.max_late_ms = *std::max_element(late_ms.begin(), late_ms.end());
   return out;
 }
 
