@@ -56,7 +56,7 @@ struct EpisodeResult {
 inline const std::atomic<bool> kNeverStop{false};
 
 /// What one episode runs: the scenario, its root seed and the models, and the parts a front replaces (children's
-/// actions, the robot's finger, signals from outside). Deterministic from these alone.
+/// actions, what decides for the robot, the robot's finger, signals from outside). Deterministic from these alone.
 struct EpisodeInputs {
   const Scenario& scenario;                              ///< what it runs (validated)
   std::uint64_t seed = 0;                                ///< root seed
