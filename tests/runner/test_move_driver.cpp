@@ -3,6 +3,7 @@
 
 #include "freeplay/planning/plan.hpp"
 #include "freeplay/runner/move_driver.hpp"
+#include "one_ball_world.hpp"
 
 namespace freeplay::runner {
 namespace {
@@ -10,20 +11,7 @@ namespace {
 /// One item ("ball") on an empty table, dragged by the finger; records every call in order.
 class BallSink final : public MoveSink {
  public:
-  planning::MoveWorld move_world() override {
-    planning::MoveWorld w;
-    w.item_centre = [this](const std::string& item) -> std::optional<Vec2> {
-      if (item != "ball") return std::nullopt;
-      return ball;
-    };
-    w.footprints = [this] {
-      const Polygon2 square{ball + Vec2(-0.02, -0.02), ball + Vec2(0.02, -0.02), ball + Vec2(0.02, 0.02),
-                            ball + Vec2(-0.02, 0.02)};
-      return std::vector<planning::Obstacle>{{"ball", square}};
-    };
-    w.held_by_child = [this](const std::string&) { return held; };
-    return w;
-  }
+  planning::MoveWorld move_world() override { return test::one_ball_world(ball, held); }
   void move_started(const policies::MoveItem& move, bool running, double) override {
     calls.push_back("started " + move.item + (running ? " running" : " refused"));
   }
