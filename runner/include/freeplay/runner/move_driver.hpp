@@ -8,6 +8,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <string>
 
 #include "freeplay/core/rng.hpp"
 #include "freeplay/planning/move_executor.hpp"
