@@ -17,6 +17,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "command_registry.hpp"
+#include "freeplay/runner/move_driver.hpp"
 #include "freeplay/runner/sandtray_world.hpp"
 #include "freeplay/core/atomic_file.hpp"
 #include "freeplay/core/error.hpp"
@@ -125,6 +126,21 @@ void check_png_path(const std::filesystem::path& out) {
   }
 }
 
+// The move of `freeplay plan`: on the tray alone, its finger poses are the game's `/poses` (no robot body).
+class TrayOnly final : public runner::MoveSink {
+ public:
+  explicit TrayOnly(sim::Sandtray& tray) : tray_(tray), world_(runner::sandtray_move_world(tray)) {}
+  planning::MoveWorld move_world() override { return world_; }
+  void move_started(const policies::MoveItem& /*move*/, bool /*running*/, double /*t*/) override {}
+  void finger(const planning::TimedPose& pose, double /*t*/) override { tray_.robot_pose(pose.position); }
+  void move_ended(const policies::MoveItem& /*move*/, planning::MoveStatus /*status*/, nlohmann::json /*fields*/,
+                  double /*t*/) override {}
+
+ private:
+  sim::Sandtray& tray_;
+  planning::MoveWorld world_;
+};
+
 std::string millimetres(double metres) {
   return std::isfinite(metres) ? fmt::format("{:.1f} mm", metres * 1e3) : std::string("∞ (no other item)");
 }
@@ -170,17 +186,17 @@ void run_plan(const PlanOptions& options) {
   Rng layout_rng = seeds.stream("layout");
   const planning::Layout layout = layout_with(*catalogue, options.item, options.items, layout_rng);
   for (const auto& placed : layout.items) tray.place_item(placed.name, placed.pose);
-  const planning::MoveWorld world = runner::sandtray_move_world(tray);
+  TrayOnly sink(tray);
+  const planning::MoveWorld world = sink.move_world();
   const Vec2 start = *world.item_centre(options.item);
   const std::vector<planning::Obstacle> footprints_before = world.footprints();
 
   planning::MoveExecutorConfig config;
   config.time_budget_s = options.time_budget_s;
   config.exact_endpoints = !options.faithful_endpoints;
-  planning::MoveExecutor executor(planner, config);
-  Rng planner_rng = seeds.stream("planner");
-  executor.start({options.item, target}, world, planner_rng);
-  const planning::MoveOutcome planned = executor.current();
+  runner::MoveDriver mover(std::make_unique<planning::MoveExecutor>(planner, config), seeds.stream("planner"));
+  mover.start({options.item, target}, 0.0, sink);
+  const planning::MoveOutcome planned = mover.outcome();
   const planning::PlanMetrics& metrics = planned.plan.metrics;
   const std::size_t n_poses = planned.poses.size();
   const double expected_s = n_poses > 0 ? planned.poses.back().t - planned.poses.front().t : 0.0;
@@ -215,27 +231,20 @@ void run_plan(const PlanOptions& options) {
   }
 
   std::optional<double> release_time;
-  double last_pose_time = 0.0;
   double others_moved_m = 0.0;
   if (options.execute && planned.plan.ok) {
-    planning::MoveOutputs outputs;
-    outputs.finger = [&](const planning::TimedPose& pose) {
-      tray.robot_pose(pose.position);
-      last_pose_time = tray.time();
-    };
     const std::string releasing = "releasing_" + options.item;
     const double t0 = tray.time();
-    for (int tick = 0; tick < static_cast<int>(kMaxExecutionS * 10.0) && !release_time; ++tick) {
-      executor.step(0.1, world, outputs);
-      tray.step(0.1);
+    for (int tick = 0; tick < std::lround(kMaxExecutionS / runner::kMoveTickS) && !release_time; ++tick) {
+      mover.step(tray.time() - t0, sink);
+      tray.step(runner::kMoveTickS);
       for (const Event& event : tray.drain_events()) {
         if (event.type == "interaction_event" && event.data.value("message", "") == releasing) {
           release_time = event.t - t0;
-          executor.observe_release(tray.item(options.item).pose.position());
+          mover.observe_release(tray.item(options.item).pose.position());
         }
       }
     }
-    last_pose_time -= t0;
     for (const auto& before : footprints_before) {
       if (before.name == options.item) continue;
       const Vec2 was = vertex_mean(before.footprint);
@@ -243,7 +252,7 @@ void run_plan(const PlanOptions& options) {
         if (after.name == before.name) others_moved_m = std::max(others_moved_m, (vertex_mean(after.footprint) - was).norm());
       }
     }
-    const planning::MoveOutcome& done = executor.current();
+    const planning::MoveOutcome& done = mover.outcome();
     report["executed"] = {
         {"status", std::string(planning::move_status_name(done.status))},
         {"execution_s", done.execution_duration_s},
@@ -273,7 +282,7 @@ void run_plan(const PlanOptions& options) {
       row("expected execution", fmt::format("{:.1f} s (+ 1.0 s until the release)", expected_s));
     }
     if (report.contains("executed")) {
-      const planning::MoveOutcome& done = executor.current();
+      const planning::MoveOutcome& done = mover.outcome();
       row("executed", std::string(planning::move_status_name(done.status)));
       row("released after", release_time ? fmt::format("{:.1f} s", *release_time) : std::string("not released"));
       row("placement error", done.placement_error_m ? millimetres(*done.placement_error_m) : std::string("–"));

@@ -17,6 +17,7 @@
 #include "freeplay/ros/graph_topics.hpp"
 #include "freeplay/ros/localisation_node.hpp"
 #include "freeplay/runner/camera_rig.hpp"
+#include "freeplay/runner/move_driver.hpp"
 #include "freeplay/runner/sandtray_world.hpp"
 #include "freeplay/runner/scenario.hpp"
 #include "freeplay/sim/screen.hpp"
@@ -158,33 +159,29 @@ class GraphSignals final : public runner::SignalSource {
 };
 
 /// `--robot external`: the finger follows `/poses` from the graph, and the `move_sandbox_items` action and
-/// `plan_motion` service run here on the episode's clock (as the real core nodes beside the game).
-class GraphRobot final : public runner::RobotActionSource {
+/// `plan_motion` service run here on the episode's clock (as the real core nodes beside the game); a goal is driven
+/// by the one move driver, whose poses reach the game as the graph's do.
+class GraphRobot final : public runner::RobotActionSource, private runner::MoveSink {
  public:
-  GraphRobot(Live& live, const runner::Scenario& scenario, LivePublisher& publisher, std::uint64_t seed)
-      : live_(live), scenario_(scenario), publisher_(publisher), rng_(seed) {}
+  GraphRobot(Live& live, const runner::Scenario& scenario, LivePublisher& publisher, const SeedSequence& seeds)
+      : live_(live), scenario_(scenario), publisher_(publisher), goal_rng_(seeds.stream("serve.planner")),
+        plan_rng_(seeds.stream("serve.plan_motion")) {}
 
-  runner::RobotCommands commands(double /*t*/, const sim::Sandtray& tray, const runner::ReachDisc& reach) override {
+  runner::RobotCommands commands(double t, const sim::Sandtray& tray, const runner::ReachDisc& reach) override {
     auto& g = *live_.graph;
     runner::RobotCommands out;
     if (const auto look = g.take_look_at()) out.look_at = Eigen::Vector3d((*look)[0], (*look)[1], (*look)[2]);
     if (const auto point = g.take_point_at()) out.point_at = Vec2((*point)[0], (*point)[1]);
     publisher_.set_reach(reach);
-    if (!executor_) executor_ = runner::make_move_executor(scenario_, reach.centre, reach.radius);
-    const auto world = runner::sandtray_move_world(tray);
+    if (!mover_) mover_.emplace(runner::make_move_executor(scenario_, reach.centre, reach.radius), goal_rng_);
     for (const auto& p : g.take_poses()) out.finger.emplace_back(p.x, p.y);
-    if (auto goal = g.take_goal()) start(*goal, tray, world);
-    if (executor_->status() != planning::MoveStatus::Running) return out;
-    if (g.cancel_requested(goal_id_)) executor_->cancel();
-    const double stamp = live_.stamp(tray.time());
-    planning::MoveOutputs outputs;
-    outputs.finger = [&](const planning::TimedPose& pose) {
-      out.finger.push_back(pose.position);
-      g.finger(stamp, pose.position.x(), pose.position.y());
-    };
-    outputs.feedback = [&](int percentage) { g.goal_feedback(goal_id_, percentage); };
-    if (executor_->status() == planning::MoveStatus::Running) executor_->step(0.1, world, outputs);
-    if (executor_->status() != planning::MoveStatus::Running) finish();
+    tray_ = &tray;
+    out_ = &out;
+    stamp_ = live_.stamp(tray.time());
+    if (auto goal = g.take_goal()) start(*goal, t, tray);
+    if (mover_->moving() && g.cancel_requested(goal_id_)) mover_->cancel(t, *this);
+    mover_->step(t, *this);
+    out_ = nullptr;
     return out;
   }
 
@@ -212,28 +209,38 @@ class GraphRobot final : public runner::RobotActionSource {
     return "";
   }
 
-  void start(const ros_graph::MoveGoal& goal, const sim::Sandtray& tray, const planning::MoveWorld& world) {
-    auto& g = *live_.graph;
+  void start(const ros_graph::MoveGoal& goal, double t, const sim::Sandtray& tray) {
     if (const auto why = refusal(goal, tray); !why.empty()) {
       spdlog::warn("move_sandbox_items: aborted goal {}: {}", goal.id, why);
-      g.goal_done(goal.id, ros_graph::GoalEnd::Aborted, why);
+      live_.graph->goal_done(goal.id, ros_graph::GoalEnd::Aborted, why);
       return;
     }
-    if (executor_->status() == planning::MoveStatus::Running) {
-      executor_->cancel();
-      g.goal_done(goal_id_, ros_graph::GoalEnd::Preempted, "preempted by a newer goal");
+    if (mover_->moving()) {
+      preempted_by_newer_ = true;
+      mover_->cancel(t, *this);
+      preempted_by_newer_ = false;
     }
     goal_id_ = goal.id;
-    executor_->start({goal.item, {goal.x, goal.y}}, world, rng_);
-    if (executor_->status() != planning::MoveStatus::Running) finish();
+    mover_->start({goal.item, {goal.x, goal.y}}, t, *this);
   }
 
-  void finish() {
-    const auto& outcome = executor_->current();
-    const auto end = outcome.status == planning::MoveStatus::Succeeded ? ros_graph::GoalEnd::Succeeded
-                     : outcome.status == planning::MoveStatus::Preempted ? ros_graph::GoalEnd::Preempted
-                                                                         : ros_graph::GoalEnd::Aborted;
-    const std::string text = end == ros_graph::GoalEnd::Succeeded ? "" : outcome.reason() + ": " + outcome.message;
+  // ---- the move's sink: the game's `/poses` (with the graph's), the action's feedback and result ----
+  planning::MoveWorld move_world() override { return runner::sandtray_move_world(*tray_); }
+  void move_started(const policies::MoveItem& /*move*/, bool /*running*/, double /*t*/) override {}
+  void finger(const planning::TimedPose& pose, double /*t*/) override {
+    out_->finger.push_back(pose.position);
+    live_.graph->finger(stamp_, pose.position.x(), pose.position.y());
+  }
+  void progress(int percentage) override { live_.graph->goal_feedback(goal_id_, percentage); }
+  void move_ended(const policies::MoveItem& /*move*/, planning::MoveStatus status, nlohmann::json /*fields*/,
+                  double /*t*/) override {
+    const auto& outcome = mover_->outcome();
+    const auto end = status == planning::MoveStatus::Succeeded   ? ros_graph::GoalEnd::Succeeded
+                     : status == planning::MoveStatus::Preempted ? ros_graph::GoalEnd::Preempted
+                                                                 : ros_graph::GoalEnd::Aborted;
+    const std::string text = preempted_by_newer_                    ? "preempted by a newer goal"
+                             : end == ros_graph::GoalEnd::Succeeded ? ""
+                                                                    : outcome.reason() + ": " + outcome.message;
     live_.graph->goal_done(goal_id_, end, text);
   }
 
@@ -250,7 +257,7 @@ class GraphRobot final : public runner::RobotActionSource {
       plan.obstacles = world.footprints();
       plan.time_budget_s = scenario_.planner.time_budget_s;
       const auto result =
-          planning::plan_motion(scenario_.planner.name, plan, rng_, planning::planner_options(scenario_.planner));
+          planning::plan_motion(scenario_.planner.name, plan, plan_rng_, planning::planner_options(scenario_.planner));
       if (!result.ok) spdlog::warn("plan_motion: no path for {}: {}", item, result.message);
       for (const auto& p : result.path) path.push_back({p.position.x(), p.position.y()});
     } else {
@@ -263,9 +270,14 @@ class GraphRobot final : public runner::RobotActionSource {
   Live& live_;
   const runner::Scenario& scenario_;
   LivePublisher& publisher_;
-  Rng rng_;
-  std::unique_ptr<planning::MoveExecutor> executor_;
+  Rng goal_rng_;                           // the goals' planner stream (handed to the move driver)
+  Rng plan_rng_;                           // the `plan_motion` service's planner stream
+  std::optional<runner::MoveDriver> mover_;  // made at the first tick, once the Nao's reach is known
   std::uint64_t goal_id_ = 0;
+  const sim::Sandtray* tray_ = nullptr;     // the game during commands()
+  runner::RobotCommands* out_ = nullptr;    // this tick's commands during commands()
+  double stamp_ = 0.0;                      // ROS time of this tick
+  bool preempted_by_newer_ = false;
 };
 
 void serve_plans(GraphRobot& robot, const sim::Sandtray& tray) { robot.serve_plans(tray); }
@@ -290,7 +302,7 @@ struct GraphSide::Impl {
       publisher.set_localisation(localisation.get());
     }
     if (options.external_robot && child_robot) {
-      robot = std::make_unique<GraphRobot>(live, scenario, publisher, SeedSequence(seed).seed_for("serve.planner"));
+      robot = std::make_unique<GraphRobot>(live, scenario, publisher, SeedSequence(seed));
       publisher.set_planner(robot.get());
     }
     signals = std::make_unique<GraphSignals>(*graph, publisher, localisation.get());

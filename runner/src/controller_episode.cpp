@@ -9,6 +9,7 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -17,6 +18,7 @@
 #include "freeplay/core/rng.hpp"
 #include "freeplay/planning/move_executor.hpp"
 #include "freeplay/planning/plan.hpp"
+#include "freeplay/runner/move_driver.hpp"
 #include "freeplay/runner/run_folder.hpp"
 #include "freeplay/runner/sandtray_world.hpp"
 #include "freeplay/runner/versions.hpp"
@@ -94,8 +96,7 @@ class ControllerEpisode {
     tray_.signal(sim::Signal::StartFreeplay);
     tray_.drain_events();
     const auto disc = nao_.arm_reach();
-    executor_ = make_move_executor(scenario, disc.centre, disc.radius);
-    planner_rng_ = seeds_.stream("planner");
+    mover_.emplace(make_move_executor(scenario, disc.centre, disc.radius), seeds_.stream("planner"));
     trace_.interval_steps = spec_.trace_interval_steps;
     trace_.machine = trace_machine_kind();
     trace_.qpos_names = stage::qpos_names(*stage_model_);
@@ -282,15 +283,7 @@ class ControllerEpisode {
 
   // Game tick (10 Hz): the move stream and the sandtray.
   void game_tick() {
-    if (executor_->status() == planning::MoveStatus::Running) {
-      planning::MoveOutputs outputs;
-      outputs.finger = [this](const planning::TimedPose& pose) {
-        tray_.robot_pose(pose.position);
-        last_finger_ = pose.position;
-      };
-      outputs.arm = &follower_;
-      executor_->step(kGameTickS, sandtray_move_world(tray_), outputs);
-    }
+    mover_->step(time(), tray_sink_);
     tray_.step(kGameTickS);
     for (auto& e : tray_.drain_events()) {
       if (e.type == "interaction_event" && e.data.value("message", "").rfind("releasing_", 0) == 0) released_ = true;
@@ -325,6 +318,24 @@ class ControllerEpisode {
    public:
     explicit Follower(ControllerEpisode& episode) : episode_(episode) {}
     planning::FollowReport follow(const Vec2& finger, double /*t*/) override { return episode_.follow(finger); }
+
+   private:
+    ControllerEpisode& episode_;
+  };
+
+  /// Where a target's move acts: the sandtray's `/poses` (fake touches) and the Nao following them.
+  class TraySink final : public MoveSink {
+   public:
+    explicit TraySink(ControllerEpisode& episode) : episode_(episode) {}
+    planning::MoveWorld move_world() override { return sandtray_move_world(episode_.tray_); }
+    planning::ArmFollower* arm() override { return &episode_.follower_; }
+    void move_started(const policies::MoveItem& /*move*/, bool /*running*/, double /*t*/) override {}
+    void finger(const planning::TimedPose& pose, double /*t*/) override {
+      episode_.tray_.robot_pose(pose.position);
+      episode_.last_finger_ = pose.position;
+    }
+    void move_ended(const policies::MoveItem& /*move*/, planning::MoveStatus /*status*/, nlohmann::json /*fields*/,
+                    double /*t*/) override {}
 
    private:
     ControllerEpisode& episode_;
@@ -397,11 +408,11 @@ class ControllerEpisode {
     if (t.from) tray_.place_item(t.item, Pose2{(*t.from)[0], (*t.from)[1], 0.0});
     const Vec2 to(t.point[0], t.point[1]);
     released_ = false;
-    executor_->start({t.item, to}, sandtray_move_world(tray_), planner_rng_);
+    mover_->start({t.item, to}, time(), tray_sink_);
     out.update({{"item", t.item}, {"to", t.point}});
     // Stream the poses (the executor ends by itself; a generous cap guards against a stuck stream).
-    run_until(600.0, [&] { return executor_->status() != planning::MoveStatus::Running; });
-    const auto& outcome = executor_->current();
+    run_until(600.0, [&] { return !mover_->moving(); });
+    const auto& outcome = mover_->outcome();
     const double stream_end = time();
     out["status"] = std::string(planning::move_status_name(outcome.status));
     out["reason"] = outcome.reason();
@@ -417,8 +428,8 @@ class ControllerEpisode {
     if (outcome.sync.unreachable == 0) reachable_errors_mm_.push_back(error_mm);
     // The game releases the item 1 s after the last pose.
     run_until(std::max(0.0, stream_end + 1.5 - time()), [&] { return released_; });
-    if (released_) executor_->observe_release(tray_.item(t.item).pose.position());
-    const auto& final_outcome = executor_->current();
+    if (released_) mover_->observe_release(tray_.item(t.item).pose.position());
+    const auto& final_outcome = mover_->outcome();
     if (final_outcome.placement_error_m) placement_errors_mm_.push_back(*final_outcome.placement_error_m * 1000.0);
     const auto& sync = final_outcome.sync;
     sync_mean_mm_.push_back(sync.mean_error_m * 1000.0);
@@ -519,9 +530,9 @@ class ControllerEpisode {
   long steps_ = 0;
   long control_ticks_ = 0;
   // Moves.
-  std::unique_ptr<planning::MoveExecutor> executor_;
-  Rng planner_rng_{0};
+  std::optional<MoveDriver> mover_;  // the one move driver (set in the constructor, once the Nao's reach is known)
   Follower follower_{*this};
+  TraySink tray_sink_{*this};
   Vec2 last_finger_ = Vec2::Zero();
   bool released_ = false;
   // Output.

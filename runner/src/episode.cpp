@@ -25,17 +25,22 @@ constexpr const char* kRobotHello = "Hello, I'm Nao. Today I'll be playing with 
 /// (SimWorld) holds the game, the children and the metrics; the robot side (RobotSide) decides for the robot.
 class Episode {
  public:
-  Episode(const Scenario& scenario, std::uint64_t seed, const SharedModels& models, int episode_index)
-      : scenario_(scenario), seeds_(seed), world_(scenario, seeds_, models) {
+  Episode(const EpisodeInputs& inputs)
+      : scenario_(inputs.scenario), seeds_(inputs.seed), world_(inputs.scenario, seeds_, inputs.models) {
     if (!world_.child_robot()) return;
-    auto policy = policies::make_policy(scenario.robot.policy, scenario.robot.params);
     policies::PolicyContext context;
-    context.episode_index = episode_index;
-    for (const auto& item : models.catalogue->items()) context.item_names.push_back(item.name);
-    policy->reset(context, seeds_.stream("policy"));
+    context.episode_index = inputs.episode_index;
+    for (const auto& item : inputs.models.catalogue->items()) context.item_names.push_back(item.name);
     const auto disc = world_.reach();
-    robot_.emplace(std::move(policy), make_move_executor(scenario, disc.centre, disc.radius),
-                   seeds_.stream("planner"), BadMove::Throw);
+    auto executor = make_move_executor(scenario_, disc.centre, disc.radius);
+    if (inputs.decisions != nullptr) {  // an action source in front of the robot side: what it asks is reported
+      inputs.decisions->reset(context, seeds_.stream("policy"));
+      robot_.emplace(*inputs.decisions, std::move(executor), seeds_.stream("planner"), BadMove::Report);
+      return;
+    }
+    auto policy = policies::make_policy(scenario_.robot.policy, scenario_.robot.params);
+    policy->reset(context, seeds_.stream("policy"));
+    robot_.emplace(std::move(policy), std::move(executor), seeds_.stream("planner"), BadMove::Throw);
   }
 
   EpisodeResult run(const EpisodeInputs& inputs, const EpisodeOutputs& outputs) {
@@ -234,7 +239,7 @@ EpisodeOutputs observed_by(const EpisodeObservers& observers) {
 }
 
 EpisodeResult run_episode(const EpisodeInputs& inputs, const EpisodeOutputs& outputs) {
-  Episode episode(inputs.scenario, inputs.seed, inputs.models, inputs.episode_index);
+  Episode episode(inputs);
   return episode.run(inputs, outputs);
 }
 

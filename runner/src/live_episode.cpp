@@ -147,6 +147,7 @@ EpisodeResult LiveEpisode::run(const EpisodeInputs& inputs) {
                      .id = inputs.id,
                      .episode_index = inputs.episode_index,
                      .children = inputs.children,
+                     .decisions = inputs.decisions,
                      .robot = inputs.robot,
                      .signals = inputs.signals};
   return run_episode(live, {.observers = {ticks_.get()}});

@@ -13,7 +13,6 @@ namespace freeplay::runner {
 
 namespace {
 
-constexpr double kTickS = 0.1;                           // the decision and `/poses` rate (10 Hz)
 const Eigen::Vector3d kPurpleFace{0.30, -0.60, 0.25};   // seated on the long side below the screen
 const Eigen::Vector3d kYellowFace{0.30, 0.265, 0.25};   // seated on the long side above it
 
@@ -37,32 +36,27 @@ Eigen::Vector3d seat_face(const std::string& seat) { return seat == "yellow" ? k
 
 RobotSide::RobotSide(std::unique_ptr<policies::PlayPolicy> policy, std::unique_ptr<planning::MoveExecutor> executor,
                      Rng planner_rng, BadMove bad_move)
-    : policy_(std::move(policy)), executor_(std::move(executor)), planner_rng_(planner_rng), bad_move_(bad_move) {}
+    : owned_policy_(std::move(policy)), policy_(owned_policy_.get()), mover_(std::move(executor), planner_rng),
+      bad_move_(bad_move) {}
+
+RobotSide::RobotSide(policies::PlayPolicy& policy, std::unique_ptr<planning::MoveExecutor> executor, Rng planner_rng,
+                     BadMove bad_move)
+    : policy_(&policy), mover_(std::move(executor), planner_rng), bad_move_(bad_move) {}
 
 void RobotSide::step(double t, policies::Observation& o, RobotWorld& world) {
   // The game said an item of ours was released: where it landed (the executor's placement error).
   if (!moving()) {
     for (const auto& message : o.interaction_events) {
       if (message.rfind("releasing_", 0) != 0) continue;
-      if (const auto* item = o.item(message.substr(10)); item != nullptr && item->name == move_.item) {
-        executor_->observe_release(item->pose.position());
+      if (const auto* item = o.item(message.substr(10)); item != nullptr && item->name == current_item()) {
+        mover_.observe_release(item->pose.position());
       }
     }
   }
   o.self.moving_item = moving();
-  o.self.current_item = move_.item;
+  o.self.current_item = current_item();
   for (const auto& action : policy_->decide(o)) handle(action, t, world);
-  if (move_unreported_) {
-    move_unreported_ = false;
-    finish_move(world, t);
-  }
-  if (moving()) {
-    planning::MoveOutputs outputs;
-    outputs.finger = [&](const planning::TimedPose& pose) { world.finger(pose, t); };
-    outputs.arm = world.arm();
-    executor_->step(kTickS, world.move_world(), outputs);
-    if (!moving()) finish_move(world, t);
-  }
+  ended(mover_.step(t, world));
   if (speech_pending_result_ && t >= speaking_until_) {
     speech_pending_result_ = false;
     policy_->on_result({policies::ActionResult::Kind::SpeechFinished, "", ""});
@@ -83,10 +77,7 @@ void RobotSide::handle(const policies::Action& action, double t, RobotWorld& wor
     world.say(say->text, say->addressee, duration, t);
   } else if (std::holds_alternative<policies::CancelMove>(action)) {
     world.cancel(t);
-    if (moving()) {
-      executor_->cancel();
-      finish_move(world, t);
-    }
+    ended(mover_.cancel(t, world));
   }
 }
 
@@ -102,52 +93,18 @@ void RobotSide::start_move(const policies::MoveItem& move, double t, RobotWorld&
     policy_->on_result({policies::ActionResult::Kind::MoveFailed, move.item, "bad goal"});
     return;
   }
-  executor_->start({move.item, move.target}, planning_world, planner_rng_);
-  move_unreported_ = !moving();
-  move_ = move;
+  ended(mover_.start(move, t, world));
   ++counts_.moves_started;
-  world.move_started(move, moving(), t);
 }
 
-void RobotSide::finish_move(RobotWorld& world, double t) {
-  const auto status = executor_->status();
-  const auto& outcome = executor_->current();
-  policies::ActionResult result;
-  result.item = move_.item;
-  nlohmann::json data{{"item", move_.item},
-                      {"status", std::string(planning::move_status_name(status))},
-                      {"reason", outcome.reason()},
-                      {"target_in_reach", outcome.target_in_reach},
-                      {"poses", outcome.poses_sent}};
-  // The measurements go into the event too, so that a recording holds every metric (freeplay replay).
-  if (outcome.plan.ok) {
-    data["path_length_m"] = outcome.plan.metrics.path_length_m;
-    data["min_clearance_mm"] = outcome.plan.metrics.min_clearance_m * 1000.0;
+void RobotSide::ended(const std::optional<policies::ActionResult>& result) {
+  if (!result) return;
+  switch (result->kind) {
+    case policies::ActionResult::Kind::MoveSucceeded: ++counts_.moves_succeeded; break;
+    case policies::ActionResult::Kind::MoveCancelled: ++counts_.moves_cancelled; break;
+    default: ++counts_.moves_failed; break;
   }
-  if (outcome.sync.samples > 0) {
-    data["sync_error_mm_mean"] = outcome.sync.mean_error_m * 1000.0;
-    data["sync_error_mm_max"] = outcome.sync.max_error_m * 1000.0;
-    data["sync_lag_ms"] = outcome.sync.best_lag_s * 1000.0;
-  }
-  if (outcome.poses_sent > 0) data["duration_s"] = outcome.execution_duration_s;
-  data["stolen_by_child"] = outcome.stolen_by_child;
-  switch (status) {
-    case planning::MoveStatus::Succeeded:
-      result.kind = policies::ActionResult::Kind::MoveSucceeded;
-      ++counts_.moves_succeeded;
-      break;
-    case planning::MoveStatus::Preempted:
-      result.kind = policies::ActionResult::Kind::MoveCancelled;
-      ++counts_.moves_cancelled;
-      break;
-    default:
-      result.kind = policies::ActionResult::Kind::MoveFailed;
-      result.reason = outcome.reason();
-      ++counts_.moves_failed;
-      break;
-  }
-  world.move_ended(move_, status, std::move(data), t);
-  policy_->on_result(result);
+  policy_->on_result(*result);
 }
 
 }  // namespace freeplay::runner

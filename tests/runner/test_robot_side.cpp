@@ -6,6 +6,7 @@
 #include "freeplay/core/error.hpp"
 #include "freeplay/planning/plan.hpp"
 #include "freeplay/runner/robot_side.hpp"
+#include "one_ball_world.hpp"
 
 namespace freeplay::runner {
 namespace {
@@ -35,19 +36,7 @@ class ListPolicy final : public policies::PlayPolicy {
 /// One item ("ball") on an empty table; records every call in order.
 class RecordingWorld final : public RobotWorld {
  public:
-  planning::MoveWorld move_world() override {
-    planning::MoveWorld w;
-    w.item_centre = [this](const std::string& item) -> std::optional<Vec2> {
-      if (item != "ball") return std::nullopt;
-      return ball;
-    };
-    w.footprints = [this] {
-      const Polygon2 square{ball + Vec2(-0.02, -0.02), ball + Vec2(0.02, -0.02), ball + Vec2(0.02, 0.02),
-                            ball + Vec2(-0.02, 0.02)};
-      return std::vector<planning::Obstacle>{{"ball", square}};
-    };
-    return w;
-  }
+  planning::MoveWorld move_world() override { return test::one_ball_world(ball, held); }
   void move_started(const policies::MoveItem& move, bool running, double) override {
     calls.push_back("move_started " + move.item + (running ? " running" : " refused"));
   }
@@ -69,6 +58,7 @@ class RecordingWorld final : public RobotWorld {
   void cancel(double) override { calls.push_back("cancel"); }
 
   Vec2 ball{0.20, -0.15};
+  bool held = false;
   int poses = 0;
   double said_duration = 0.0;
   std::vector<std::string> calls;

@@ -52,7 +52,7 @@ nlohmann::json events_json(const std::vector<Event>& events) {
 // What the server thread, the observer (sim thread) and the API share.
 class Session {
  public:
-  Session(const runner::Scenario& scenario, std::uint64_t seed, const WebSessionOptions& options)
+  Session(const runner::Scenario& scenario, const WebSessionOptions& options)
       : log_(options.out / "events.jsonl"),
         experiment_(options.out / "experiment.yaml", scenario.condition,
                     std::chrono::duration_cast<std::chrono::seconds>(std::chrono::system_clock::now().time_since_epoch()).count(),
@@ -66,7 +66,7 @@ class Session {
       item_pictures_["/api/item/" + item.name + ".png"] = std::string(png.begin(), png.end());
     }
     if (scenario.condition == runner::Condition::ChildRobot) {
-      robot_ = std::make_unique<WizardRobot>(scenario, seed, log_, options.mode, options.sparc_timeout_s);
+      robot_ = std::make_unique<WizardSource>(scenario, log_, options.mode, options.sparc_timeout_s);
     }
     // The session's bag (`<out>/recording/`), paused until the page starts it unless told to record.
     recorder_ = std::make_unique<RecorderSwitch>(std::make_unique<recording::BagRecorder>(options.out, scenario.recording),
@@ -102,7 +102,7 @@ class Session {
     return cameras == nullptr ? "none" : cameras->on() ? "running" : "paused";
   }
 
-  WizardRobot* robot() { return robot_.get(); }
+  WizardSource* robot() { return robot_.get(); }
   SessionLog& log() { return log_; }
   ExperimentManager& experiment() { return experiment_; }
   bool finalised() const { return finalised_; }
@@ -244,7 +244,7 @@ class Session {
   std::vector<std::string> camera_names_;
   std::vector<std::string> item_names_;
   std::map<std::string, std::string> item_pictures_;  // API path → PNG
-  std::unique_ptr<WizardRobot> robot_;
+  std::unique_ptr<WizardSource> robot_;
   std::atomic<bool> finalised_{false};
   std::atomic<int> screenshots_requested_{0};
   mutable std::mutex mutex_;
@@ -314,11 +314,7 @@ class WebObserver final : public runner::EpisodeObserver {
   void observe(const runner::EpisodeSnapshot& s) override {
     const double tick_ms = unix_ms();
     for (const auto& e : s.new_events) session_.log().add(e);
-    if (auto* robot = session_.robot()) {
-      std::map<std::string, Eigen::Vector3d> faces;
-      for (const auto& c : s.children) faces[c.seat] = c.head;
-      robot->observe(s.new_events, faces);
-    }
+    if (auto* robot = session_.robot()) robot->clock(s.tray->time());
     if (s.stage == "freeplay" && !freeplay_seen_) {
       freeplay_seen_ = true;
       session_.experiment().freeplay_started(static_cast<std::uint64_t>(tick_ms * 1e6));
@@ -458,7 +454,7 @@ WebSessionReport serve_web(const runner::Scenario& scenario, std::uint64_t seed,
         return s != nullptr ? s->greeting() : std::string(kStartingFrame);
       });
   std::filesystem::create_directories(options.out);
-  ready = &session.emplace(scenario, seed, options);
+  ready = &session.emplace(scenario, options);
   if (options.on_listening) options.on_listening(server.url());
   if (options.on_commands) {
     options.on_commands([&session](const std::string& body) { return session->api({"POST", "/api/command", {}, body}); });
@@ -470,7 +466,7 @@ WebSessionReport serve_web(const runner::Scenario& scenario, std::uint64_t seed,
     }
   } detach{options};
   WebSessionReport report;
-  const runner::EpisodeInputs inputs{.scenario = scenario, .seed = seed, .id = "web", .robot = session->robot(),
+  const runner::EpisodeInputs inputs{.scenario = scenario, .seed = seed, .id = "web", .decisions = session->robot(),
                                      .signals = &session->signals()};
   WebObserver observer(*session, server, inputs.info(), options.out, report.ticks);
   // The page first (it adds the tick's events to the session log), then the bag, then the other fronts.

@@ -16,6 +16,7 @@
 #include "freeplay/agents/params.hpp"
 #include "freeplay/agents/session.hpp"
 #include "freeplay/core/event_log.hpp"
+#include "freeplay/policies/play_policy.hpp"
 #include "freeplay/runner/child_action_source.hpp"
 #include "freeplay/runner/episode_observer.hpp"
 #include "freeplay/runner/robot_action_source.hpp"
@@ -55,7 +56,7 @@ struct EpisodeResult {
 inline const std::atomic<bool> kNeverStop{false};
 
 /// What one episode runs: the scenario, its root seed and the models, and the parts a front replaces (children's
-/// actions, the robot's finger, signals from outside). Deterministic from these alone.
+/// actions, what decides for the robot, the robot's finger, signals from outside). Deterministic from these alone.
 struct EpisodeInputs {
   const Scenario& scenario;                              ///< what it runs (validated)
   std::uint64_t seed = 0;                                ///< root seed
@@ -65,7 +66,10 @@ struct EpisodeInputs {
   int episode_index = 0;                                 ///< index within its variant (the policy's context)
   /// The children's free-play actions instead of the synthetic agents' (which then leave no annotations), or null.
   ChildActionSource* children = nullptr;
-  /// Child-robot scenarios: the robot's finger poses instead of its policy's and executor's, or null.
+  /// Child-robot scenarios: what decides for the robot instead of the scenario's policy, in front of the one robot
+  /// side (the web page's wizard and SPARC modes); reset by the episode, not owned; or null.
+  policies::PlayPolicy* decisions = nullptr;
+  /// Child-robot scenarios: the robot's finger poses from outside instead of its robot side's, or null.
   RobotActionSource* robot = nullptr;
   /// Signals received from outside, applied at every tick: `start_tutorial`, `start_freeplay` and (in free play)
   /// `blank_interface` end the stages before the one they start (free play then ends "by signal"); every other

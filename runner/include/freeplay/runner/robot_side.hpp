@@ -1,12 +1,14 @@
 #pragma once
-// The robot side of an episode: the play policy, the motion planner and the move_sandbox_items executor. It decides
-// on a `policies::Observation` and acts through a `RobotWorld`: the simulated sandtray of an in-process episode, or
-// a live ROS 1 graph (`freeplay robot`). The world side owns the body: the simulated Nao in process or under
-// `freeplay serve`, the real one in the lab (it follows `/poses` as nao_behaviours does).
+// The robot side of an episode: what decides (the play policy, or an action source in front of it such as the web
+// page's wizard and SPARC modes) and the one move driver (planner and move_sandbox_items executor, move_driver.hpp).
+// It decides on a `policies::Observation` and acts through a `RobotWorld`: the simulated sandtray of an in-process
+// episode, or a live ROS 1 graph (`freeplay robot`). The world side owns the body: the simulated Nao in process or
+// under `freeplay serve`, the real one in the lab (it follows `/poses` as nao_behaviours does).
 
 #include <Eigen/Core>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -14,6 +16,7 @@
 #include "freeplay/core/rng.hpp"
 #include "freeplay/planning/move_executor.hpp"
 #include "freeplay/policies/play_policy.hpp"
+#include "freeplay/runner/move_driver.hpp"
 
 namespace freeplay::runner {
 
@@ -26,21 +29,10 @@ double speech_duration_s(const std::string& text);
 /// Where a seated child's face is approximately (sandtray frame, m): "purple" below the screen, "yellow" above.
 Eigen::Vector3d seat_face(const std::string& seat);
 
-/// What the robot side acts on: the world's actuators and the view its move executor plans on.
-class RobotWorld {
+/// What the robot side acts on: the world's actuators and, as a MoveSink, the view its moves plan on and the
+/// finger poses they stream.
+class RobotWorld : public MoveSink {
  public:
-  virtual ~RobotWorld() = default;
-  /// The sandtray as the executor sees it now (TF item centres, footprints, children's fingers).
-  virtual planning::MoveWorld move_world() = 0;
-  /// The arm that follows the finger poses and reports its fingertip, or null when the body is elsewhere.
-  virtual planning::ArmFollower* arm() { return nullptr; }
-  /// A move was started (`running` false: the executor refused or could not plan it; its end follows).
-  virtual void move_started(const policies::MoveItem& move, bool running, double t) = 0;
-  /// One finger pose of the running move (a `/poses` fake touch).
-  virtual void finger(const planning::TimedPose& pose, double t) = 0;
-  /// A move ended with `status`; `fields` holds its event fields (status, reason, measurements).
-  virtual void move_ended(const policies::MoveItem& move, planning::MoveStatus status, nlohmann::json fields,
-                          double t) = 0;
   /// A LookAt action (a point or a child's face).
   virtual void look_at(const policies::LookAt& look, double t) = 0;
   /// A PointAt action.
@@ -66,12 +58,16 @@ struct RobotSideCounts {
   int moves_cancelled = 0;  ///< pre-empted by CancelMove
 };
 
-/// The robot's decisions: one policy, one planner stream, one move executor (one instance per episode or node).
+/// The robot's decisions: one policy (or action source), one move driver (one instance per episode or node).
 class RobotSide {
  public:
   /// Takes the policy (already reset), the executor and the planner's random stream.
   RobotSide(std::unique_ptr<policies::PlayPolicy> policy, std::unique_ptr<planning::MoveExecutor> executor,
             Rng planner_rng, BadMove bad_move);
+  /// Decides with `policy` (already reset; not owned, it must outlive the robot side): an action source in front
+  /// of the robot, such as the web page's wizard.
+  RobotSide(policies::PlayPolicy& policy, std::unique_ptr<planning::MoveExecutor> executor, Rng planner_rng,
+            BadMove bad_move);
 
   /// One 10 Hz decision tick at `t` (s since free play started): completes `o.self` with the move state, lets the
   /// policy decide, acts through `world`, streams the running move's poses and reports ended actions.
@@ -81,9 +77,9 @@ class RobotSide {
   /// The policy's registered name.
   std::string policy_name() const { return policy_->name(); }
   /// True while a move streams poses.
-  bool moving() const { return executor_->status() == planning::MoveStatus::Running; }
+  bool moving() const { return mover_.moving(); }
   /// The item of the current (or last) move.
-  const std::string& current_item() const { return move_.item; }
+  const std::string& current_item() const { return mover_.move().item; }
   /// True while an utterance started at or before `t` lasts.
   bool speaking(double t) const { return t < speaking_until_; }
   /// How its moves ended so far.
@@ -92,14 +88,12 @@ class RobotSide {
  private:
   void handle(const policies::Action& action, double t, RobotWorld& world);
   void start_move(const policies::MoveItem& move, double t, RobotWorld& world);
-  void finish_move(RobotWorld& world, double t);
+  void ended(const std::optional<policies::ActionResult>& result);
 
-  std::unique_ptr<policies::PlayPolicy> policy_;
-  std::unique_ptr<planning::MoveExecutor> executor_;
-  Rng planner_rng_;
+  std::unique_ptr<policies::PlayPolicy> owned_policy_;  // null when the policy is an outside action source
+  policies::PlayPolicy* policy_;
+  MoveDriver mover_;
   BadMove bad_move_;
-  policies::MoveItem move_;        // the current (or last) move
-  bool move_unreported_ = false;   // a move that ended in start(), reported after this tick's actions
   double speaking_until_ = -1.0;   // s since free play started
   bool speech_pending_result_ = false;
   RobotSideCounts counts_;

@@ -1,7 +1,7 @@
 #pragma once
 // The parts of a web session the experiment manager shows and switches (docs/web.md, "Components"): the page's
 // `sandtray/signals/*` into the served episode and the session's bag recorder (paused and resumed from the page).
-// The camera rig's switch is the live episode's (runner::ObserverSwitch); the robot side's is the WizardRobot's.
+// The camera rig's switch is the live episode's (runner::ObserverSwitch); the robot side's is the WizardSource's.
 
 #include <memory>
 #include <mutex>

@@ -12,7 +12,7 @@
 #include "freeplay/runner/frame_sink.hpp"
 #include "freeplay/runner/live_episode.hpp"
 #include "freeplay/web/server.hpp"
-#include "freeplay/web/wizard_robot.hpp"
+#include "freeplay/web/wizard_source.hpp"
 
 namespace freeplay::web {
 

@@ -1,0 +1,84 @@
+#include "freeplay/runner/move_driver.hpp"
+
+namespace freeplay::runner {
+
+MoveDriver::MoveDriver(std::unique_ptr<planning::MoveExecutor> executor, Rng planner_rng)
+    : executor_(std::move(executor)), planner_rng_(planner_rng) {}
+
+std::optional<policies::ActionResult> MoveDriver::start(const policies::MoveItem& move, double t, MoveSink& sink) {
+  std::optional<policies::ActionResult> previous;
+  if (end_unreported_) {
+    end_unreported_ = false;
+    previous = finish(t, sink);
+  } else if (moving()) {
+    previous = cancel(t, sink);
+  }
+  executor_->start({move.item, move.target}, sink.move_world(), planner_rng_);
+  end_unreported_ = !moving();
+  move_ = move;
+  sink.move_started(move, moving(), t);
+  return previous;
+}
+
+std::optional<policies::ActionResult> MoveDriver::step(double t, MoveSink& sink) {
+  if (end_unreported_) {
+    end_unreported_ = false;
+    return finish(t, sink);
+  }
+  if (!moving()) return std::nullopt;
+  planning::MoveOutputs outputs;
+  outputs.finger = [&](const planning::TimedPose& pose) { sink.finger(pose, t); };
+  outputs.feedback = [&](int percentage) { sink.progress(percentage); };
+  outputs.arm = sink.arm();
+  executor_->step(kMoveTickS, sink.move_world(), outputs);
+  if (moving()) return std::nullopt;
+  return finish(t, sink);
+}
+
+std::optional<policies::ActionResult> MoveDriver::cancel(double t, MoveSink& sink) {
+  if (!moving()) return std::nullopt;
+  executor_->cancel();
+  return finish(t, sink);
+}
+
+policies::ActionResult MoveDriver::finish(double t, MoveSink& sink) {
+  const auto& outcome = executor_->current();
+  sink.move_ended(move_, outcome.status, move_end_fields(outcome, move_.item), t);
+  return move_action_result(outcome, move_.item);
+}
+
+nlohmann::json move_end_fields(const planning::MoveOutcome& outcome, const std::string& item) {
+  nlohmann::json data{{"item", item},
+                      {"status", std::string(planning::move_status_name(outcome.status))},
+                      {"reason", outcome.reason()},
+                      {"target_in_reach", outcome.target_in_reach},
+                      {"poses", outcome.poses_sent}};
+  if (outcome.plan.ok) {
+    data["path_length_m"] = outcome.plan.metrics.path_length_m;
+    data["min_clearance_mm"] = outcome.plan.metrics.min_clearance_m * 1000.0;
+  }
+  if (outcome.sync.samples > 0) {
+    data["sync_error_mm_mean"] = outcome.sync.mean_error_m * 1000.0;
+    data["sync_error_mm_max"] = outcome.sync.max_error_m * 1000.0;
+    data["sync_lag_ms"] = outcome.sync.best_lag_s * 1000.0;
+  }
+  if (outcome.poses_sent > 0) data["duration_s"] = outcome.execution_duration_s;
+  data["stolen_by_child"] = outcome.stolen_by_child;
+  return data;
+}
+
+policies::ActionResult move_action_result(const planning::MoveOutcome& outcome, const std::string& item) {
+  policies::ActionResult result;
+  result.item = item;
+  switch (outcome.status) {
+    case planning::MoveStatus::Succeeded: result.kind = policies::ActionResult::Kind::MoveSucceeded; break;
+    case planning::MoveStatus::Preempted: result.kind = policies::ActionResult::Kind::MoveCancelled; break;
+    default:
+      result.kind = policies::ActionResult::Kind::MoveFailed;
+      result.reason = outcome.reason();
+      break;
+  }
+  return result;
+}
+
+}  // namespace freeplay::runner

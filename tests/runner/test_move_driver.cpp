@@ -1,0 +1,105 @@
+// The one move driver on a sink of our own: what it sends to the sink and what it returns when a move ends.
+#include <gtest/gtest.h>
+
+#include "freeplay/planning/plan.hpp"
+#include "freeplay/runner/move_driver.hpp"
+#include "one_ball_world.hpp"
+
+namespace freeplay::runner {
+namespace {
+
+/// One item ("ball") on an empty table, dragged by the finger; records every call in order.
+class BallSink final : public MoveSink {
+ public:
+  planning::MoveWorld move_world() override { return test::one_ball_world(ball, held); }
+  void move_started(const policies::MoveItem& move, bool running, double) override {
+    calls.push_back("started " + move.item + (running ? " running" : " refused"));
+  }
+  void finger(const planning::TimedPose& pose, double) override {
+    ++poses;
+    ball = pose.position;  // the game drags the item under the finger
+  }
+  void progress(int percentage) override { last_progress = percentage; }
+  void move_ended(const policies::MoveItem& move, planning::MoveStatus status, nlohmann::json fields,
+                  double) override {
+    calls.push_back("ended " + move.item + " " + std::string(planning::move_status_name(status)));
+    last_fields = std::move(fields);
+  }
+
+  Vec2 ball{0.20, -0.15};
+  bool held = false;
+  int poses = 0;
+  int last_progress = -1;
+  std::vector<std::string> calls;
+  nlohmann::json last_fields;
+};
+
+MoveDriver make_driver(bool check_child_holding = false) {
+  planning::MoveExecutorConfig config;
+  config.check_child_holding = check_child_holding;
+  return MoveDriver(std::make_unique<planning::MoveExecutor>(
+                        std::shared_ptr<const planning::MotionPlanner>(planning::make_planner("astar")), config),
+                    Rng(7));
+}
+
+// Steps until a move ends (at most `ticks`); returns its result.
+std::optional<policies::ActionResult> run(MoveDriver& driver, BallSink& sink, int ticks) {
+  for (int tick = 1; tick <= ticks; ++tick) {
+    if (auto ended = driver.step(kMoveTickS * tick, sink)) return ended;
+  }
+  return std::nullopt;
+}
+
+TEST(MoveDriver, AMoveStreamsItsPosesThroughTheSinkAndEndsOnce) {
+  auto driver = make_driver();
+  BallSink sink;
+  EXPECT_FALSE(driver.start({"ball", {0.40, -0.15}}, 0.0, sink).has_value());
+  EXPECT_TRUE(driver.moving());
+  const auto ended = run(driver, sink, 200);
+  ASSERT_TRUE(ended.has_value());
+  EXPECT_EQ(ended->kind, policies::ActionResult::Kind::MoveSucceeded);
+  EXPECT_EQ(ended->item, "ball");
+  EXPECT_EQ(sink.calls, (std::vector<std::string>{"started ball running", "ended ball succeeded"}));
+  EXPECT_EQ(sink.poses, driver.outcome().poses_sent);
+  EXPECT_GT(sink.last_progress, 50);
+  EXPECT_NEAR(sink.ball.x(), 0.40, 1e-6);
+  EXPECT_EQ(sink.last_fields["status"], "succeeded");
+  EXPECT_EQ(sink.last_fields["poses"], sink.poses);
+  EXPECT_TRUE(sink.last_fields.contains("path_length_m"));
+  EXPECT_FALSE(driver.step(100.0, sink).has_value());  // nothing more to report
+}
+
+TEST(MoveDriver, AMoveThatCannotStartEndsAtTheNextStep) {
+  auto driver = make_driver(true);
+  BallSink sink;
+  sink.held = true;  // a child holds the ball: the executor refuses the goal
+  driver.start({"ball", {0.40, -0.15}}, 0.0, sink);
+  EXPECT_FALSE(driver.moving());
+  EXPECT_EQ(sink.calls, std::vector<std::string>{"started ball refused"});
+  const auto ended = driver.step(0.1, sink);
+  ASSERT_TRUE(ended.has_value());
+  EXPECT_EQ(ended->kind, policies::ActionResult::Kind::MoveFailed);
+  EXPECT_EQ(ended->reason, driver.outcome().reason());
+  EXPECT_EQ(sink.calls.back(), "ended ball aborted");
+  EXPECT_EQ(sink.poses, 0);
+}
+
+TEST(MoveDriver, ANewMovePreemptsTheRunningOneAndCancelStopsIt) {
+  auto driver = make_driver();
+  BallSink sink;
+  driver.start({"ball", {0.40, -0.15}}, 0.0, sink);
+  run(driver, sink, 3);
+  const auto preempted = driver.start({"ball", {0.30, -0.20}}, 0.4, sink);
+  ASSERT_TRUE(preempted.has_value());
+  EXPECT_EQ(preempted->kind, policies::ActionResult::Kind::MoveCancelled);
+  EXPECT_TRUE(driver.moving());
+  const auto cancelled = driver.cancel(0.5, sink);
+  ASSERT_TRUE(cancelled.has_value());
+  EXPECT_EQ(cancelled->kind, policies::ActionResult::Kind::MoveCancelled);
+  EXPECT_FALSE(driver.cancel(0.6, sink).has_value());  // nothing runs any more
+  EXPECT_EQ(sink.calls, (std::vector<std::string>{"started ball running", "ended ball preempted",
+                                                  "started ball running", "ended ball preempted"}));
+}
+
+}  // namespace
+}  // namespace freeplay::runner
