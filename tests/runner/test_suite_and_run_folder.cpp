@@ -5,7 +5,6 @@
 
 #include "freeplay/core/atomic_file.hpp"
 #include "freeplay/core/error.hpp"
-#include "freeplay/runner/run_folder.hpp"
 #include "freeplay/runner/suite.hpp"
 
 using namespace freeplay;
@@ -54,53 +53,4 @@ TEST(Suite, BadEntriesAreReportedWithTheSuiteLocation) {
     EXPECT_NE(msg.find("suite.yaml:3:15"), std::string::npos) << msg;
     EXPECT_NE(msg.find("does not exist"), std::string::npos) << msg;
   }
-}
-
-TEST(RunFolder, ResumesAndDropsATornLastLine) {
-  const auto dir = fresh_dir("run_folder");
-  {
-    RunFolder run(dir);
-    run.append({{"variant", "cc"}, {"episode", 1}, {"config_hash", 42}});
-    run.append({{"variant", "cc"}, {"episode", 0}, {"config_hash", 42}});
-  }
-  {  // a crash in the middle of the third append
-    std::ofstream out(dir / "episodes.jsonl", std::ios::app);
-    out << "{\"variant\": \"cc\", \"epis";
-  }
-  RunFolder resumed(dir);
-  EXPECT_TRUE(resumed.dropped_partial_line());
-  EXPECT_EQ(resumed.records().size(), 2u);
-  EXPECT_TRUE(resumed.finished("cc", 0, 42));
-  EXPECT_FALSE(resumed.finished("cc", 2, 42));
-  EXPECT_THROW(resumed.finished("cc", 1, 43), InputError);  // same episode, other configuration
-  resumed.finalize({"cc"});
-  RunFolder reread(dir);
-  ASSERT_EQ(reread.records().size(), 2u);
-  EXPECT_EQ(reread.records()[0]["episode"], 0);
-  EXPECT_FALSE(reread.dropped_partial_line());
-}
-
-TEST(RunFolder, RemembersAnEpisodeRecordedWithAnotherConfiguration) {
-  // The index keeps one hash per variant and the episodes that differ from it.
-  const auto dir = fresh_dir("run_folder_hashes");
-  {
-    RunFolder run(dir);
-    run.append({{"variant", "cc"}, {"episode", 0}, {"config_hash", 42}});
-    run.append({{"variant", "cc"}, {"episode", 5}, {"config_hash", 7}});
-    run.append({{"variant", "cr"}, {"episode", 2}, {"config_hash", 9}});
-  }
-  RunFolder resumed(dir);
-  EXPECT_TRUE(resumed.finished("cc", 0, 42));
-  EXPECT_TRUE(resumed.finished("cc", 5, 7));
-  EXPECT_THROW(resumed.finished("cc", 5, 42), InputError);
-  EXPECT_THROW(resumed.finished("cc", 0, 7), InputError);
-  EXPECT_FALSE(resumed.finished("cc", 3, 42));
-  EXPECT_FALSE(resumed.finished("cc", 100, 42));
-  EXPECT_TRUE(resumed.finished("cr", 2, 9));
-  EXPECT_FALSE(resumed.finished("cr", 1, 9));
-  EXPECT_FALSE(resumed.finished("other", 0, 42));
-}
-
-TEST(RunFolder, EpisodeFileIdsAreSafe) {
-  EXPECT_EQ(RunFolder::episode_file_id("cr[a.b=0.1]", 7), "cr_a.b=0.1_-0007");
 }
