@@ -23,7 +23,7 @@ struct MergeOptions {
 };
 
 void merge(const MergeOptions& o) {
-  std::optional<runs::ExpectedRun> expected;
+  std::optional<results::ExpectedRun> expected;
   if (!o.suite.empty()) {
     const auto suite = runner::is_suite_file(o.suite)
                            ? runner::load_suite(o.suite, o.overrides, scenario_vocabulary())

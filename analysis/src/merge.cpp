@@ -14,13 +14,13 @@
 #include "freeplay/core/atomic_file.hpp"
 #include "freeplay/core/error.hpp"
 #include "freeplay/core/yaml_schema.hpp"
-#include "freeplay/runs/run_folder.hpp"
-#include "freeplay/runs/summary.hpp"
+#include "freeplay/results/run_folder.hpp"
+#include "freeplay/results/summary.hpp"
 
 namespace freeplay::analysis {
 
-using runs::ExpectedRun;
-using runs::kRunManifestFile;
+using results::ExpectedRun;
+using results::kRunManifestFile;
 
 namespace {
 
@@ -226,7 +226,7 @@ MergeReport merge_runs(const std::vector<fs::path>& inputs, const fs::path& out,
   int episodes = 0;
   for (std::size_t input = 0; input < runs.size(); ++input) {
     const auto& r = runs[input];
-    runs::RunFolder(r.dir).for_each_record([&](const nlohmann::json& record) {
+    results::RunFolder(r.dir).for_each_record([&](const nlohmann::json& record) {
       const auto variant = record.value("variant", std::string{});
       const int index = record.value("episode", -1);
       const auto name = fmt::format("{} #{}", variant, index);
@@ -320,12 +320,12 @@ MergeReport merge_runs(const std::vector<fs::path>& inputs, const fs::path& out,
     }
     write_file_atomically(staging / "episodes.jsonl", [&](const std::function<void(std::string_view)>& write) {
       for (const auto& r : runs) {
-        runs::RunFolder(r.dir).for_each_record([&](const nlohmann::json& record) { write(record.dump() + "\n"); });
+        results::RunFolder(r.dir).for_each_record([&](const nlohmann::json& record) { write(record.dump() + "\n"); });
       }
     });
     std::vector<std::string> order;
     for (const auto& v : expected.variants) order.push_back(v.id);
-    runs::RunFolder(staging).finalize(order);  // the same order and bytes as a single-machine run
+    results::RunFolder(staging).finalize(order);  // the same order and bytes as a single-machine run
     if (with_manifest > 0) {
       auto manifest = *runs.front().manifest;
       if (manifest.contains("shard")) manifest["shard"] = {zero_based ? 0 : 1, 1};
@@ -334,7 +334,7 @@ MergeReport merge_runs(const std::vector<fs::path>& inputs, const fs::path& out,
       manifest["merged_from"] = sources;
       write_file_atomically(staging / kRunManifestFile, manifest.dump(2) + "\n");
     }
-    runs::write_summaries(staging, order, expected.title);
+    results::write_summaries(staging, order, expected.title);
     if (fs::exists(out)) fs::remove(out);  // empty (checked above)
     fs::rename(staging, out);
   } catch (...) {

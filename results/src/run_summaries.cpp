@@ -1,9 +1,9 @@
 // The summaries a run folder gets (summary.csv, summary.md); apart from summary.cpp, which the bag reader's fuzz
 // target compiles without the run folder.
-#include "freeplay/runs/run_folder.hpp"
-#include "freeplay/runs/summary.hpp"
+#include "freeplay/results/run_folder.hpp"
+#include "freeplay/results/summary.hpp"
 
-namespace freeplay::runs {
+namespace freeplay::results {
 
 std::string write_summaries(const std::filesystem::path& dir, const std::vector<std::string>& variant_order,
                             const std::string& title, int threads) {
@@ -17,4 +17,4 @@ std::string write_summaries(const std::filesystem::path& dir, const std::vector<
   return markdown;
 }
 
-}  // namespace freeplay::runs
+}  // namespace freeplay::results

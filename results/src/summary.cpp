@@ -1,4 +1,4 @@
-#include "freeplay/runs/summary.hpp"
+#include "freeplay/results/summary.hpp"
 
 #include <fmt/format.h>
 
@@ -9,7 +9,7 @@
 #include "freeplay/agents/condition.hpp"
 #include "freeplay/core/task_pool.hpp"
 
-namespace freeplay::runs {
+namespace freeplay::results {
 
 using agents::Condition;
 
@@ -221,4 +221,4 @@ std::string summary_markdown(const std::vector<VariantSummary>& summaries, const
   return out;
 }
 
-}  // namespace freeplay::runs
+}  // namespace freeplay::results

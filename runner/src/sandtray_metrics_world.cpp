@@ -1,4 +1,4 @@
-// The live sandtray as the metrics' world (apart from runs/src/episode_metrics.cpp, which links no simulation).
+// The live sandtray as the metrics' world (apart from results/src/episode_metrics.cpp, which links no simulation).
 #include "freeplay/sim/sandtray.hpp"
 #include "freeplay/sim/zones.hpp"
 #include "sim_world.hpp"

@@ -3,7 +3,7 @@
 
 #include "freeplay/agents/labels.hpp"
 #include "freeplay/runner/versions.hpp"
-#include "freeplay/runs/run_folder.hpp"
+#include "freeplay/results/run_folder.hpp"
 #include "sim_world.hpp"
 
 namespace freeplay::runner::detail {

@@ -10,8 +10,8 @@
 #include "freeplay/core/rng.hpp"
 #include "freeplay/policies/play_policy.hpp"
 #include "freeplay/runner/progress.hpp"
-#include "freeplay/runs/run_folder.hpp"
-#include "freeplay/runs/summary.hpp"
+#include "freeplay/results/run_folder.hpp"
+#include "freeplay/results/summary.hpp"
 
 namespace freeplay::runner {
 
@@ -43,8 +43,8 @@ void check_policies(const Suite& suite) {
   }
 }
 
-runs::ExpectedRun expected_run(const Suite& suite, const std::string& title) {
-  runs::ExpectedRun expected;
+results::ExpectedRun expected_run(const Suite& suite, const std::string& title) {
+  results::ExpectedRun expected;
   expected.title = title.empty() ? suite.name : title;
   for (const auto& v : suite.variants) expected.variants.push_back({v.id, v.scenario.episodes, v.scenario.config_hash});
   return expected;
@@ -56,7 +56,7 @@ RunReport run_suite(const Suite& suite, const RunOptions& options, const Episode
     throw InputError(fmt::format("shard {}/{} does not exist", options.shard_index + 1, options.shard_count),
                      "--shard", "I/N with 1 ≤ I ≤ N");
   }
-  runs::RunFolder folder(options.out);
+  results::RunFolder folder(options.out);
   if (folder.dropped_partial_line()) {
     spdlog::warn("{}: dropped an incomplete last line of episodes.jsonl (an interrupted write); that episode "
                  "runs again", folder.dir().string());
@@ -102,12 +102,12 @@ RunReport run_suite(const Suite& suite, const RunOptions& options, const Episode
       try {
         auto output = run_episode(task, stop);
         if (stop.load() && output.record.is_null()) return;  // aborted mid-episode: not recorded
-        const auto file_id = runs::RunFolder::episode_file_id(task.variant->id, task.index);
+        const auto file_id = results::RunFolder::episode_file_id(task.variant->id, task.index);
         for (const auto& [relative, contents] : output.files) {
           const bool event_log = relative.starts_with("events/");
           if (event_log && events == EventsOutput::None) continue;
           if (event_log && events == EventsOutput::Gz) {
-            folder.write(relative + ".gz", runs::gzip_compress(contents));
+            folder.write(relative + ".gz", results::gzip_compress(contents));
           } else {
             folder.write(relative, contents);
           }
@@ -145,7 +145,7 @@ RunReport run_suite(const Suite& suite, const RunOptions& options, const Episode
   folder.finalize(order);
   report.finished = static_cast<int>(folder.record_count()) - report.skipped;
   report.interrupted = stop.load() && report.skipped + report.finished < report.total;
-  runs::write_summaries(folder.dir(), order, options.title.empty() ? suite.name : options.title, options.jobs);
+  results::write_summaries(folder.dir(), order, options.title.empty() ? suite.name : options.title, options.jobs);
   if (first_error) std::rethrow_exception(first_error);
   return report;
 }

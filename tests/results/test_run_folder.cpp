@@ -5,11 +5,11 @@
 #include <fstream>
 
 #include "freeplay/core/error.hpp"
-#include "freeplay/runs/run_folder.hpp"
-#include "freeplay/runs/summary.hpp"
+#include "freeplay/results/run_folder.hpp"
+#include "freeplay/results/summary.hpp"
 
 using namespace freeplay;
-using namespace freeplay::runs;
+using namespace freeplay::results;
 
 namespace {
 

@@ -2,9 +2,9 @@
 
 #include <cmath>
 
-#include "freeplay/runs/summary.hpp"
+#include "freeplay/results/summary.hpp"
 
-using namespace freeplay::runs;
+using namespace freeplay::results;
 
 TEST(Summary, GroupsByVariantAndFlattensMetrics) {
   std::vector<nlohmann::json> records;

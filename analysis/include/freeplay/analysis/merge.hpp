@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "freeplay/runs/run_folder.hpp"
+#include "freeplay/results/run_folder.hpp"
 
 namespace freeplay::analysis {
 
@@ -28,6 +28,6 @@ struct MergeReport {
 /// suites or overrides, the same shard twice, a duplicate, missing or unknown episode, a configuration-hash
 /// mismatch, or a per-episode file that differs between inputs.
 MergeReport merge_runs(const std::vector<std::filesystem::path>& inputs, const std::filesystem::path& out,
-                       const std::optional<runs::ExpectedRun>& expected = std::nullopt);
+                       const std::optional<results::ExpectedRun>& expected = std::nullopt);
 
 }  // namespace freeplay::analysis

@@ -11,7 +11,7 @@
 #include "freeplay/core/event_log.hpp"
 #include "freeplay/core/geometry.hpp"
 
-namespace freeplay::runs {
+namespace freeplay::results {
 
 /// What the metrics read from the world at the tick being fed: item positions and the colour zone under a point.
 class MetricsWorld {
@@ -92,4 +92,4 @@ class EpisodeMetrics {
   double sync_max_mm_ = 0.0;
 };
 
-}  // namespace freeplay::runs
+}  // namespace freeplay::results

@@ -15,7 +15,7 @@
 #include <unordered_map>
 #include <vector>
 
-namespace freeplay::runs {
+namespace freeplay::results {
 
 /// The manifest each run folder carries (suite, variants and their episode counts, shard, overrides).
 inline constexpr const char* kRunManifestFile = "run.json";
@@ -86,4 +86,4 @@ class RunFolder {
 /// `contents` compressed in the gzip format (zlib, default level), readable with `zcat`.
 std::string gzip_compress(std::string_view contents);
 
-}  // namespace freeplay::runs
+}  // namespace freeplay::results

@@ -12,7 +12,7 @@
 
 #include "freeplay/core/statistics.hpp"
 
-namespace freeplay::runs {
+namespace freeplay::results {
 
 /// What the real PInSoRo sessions measured for one condition (pinsoro-targets.md §2).
 struct PinsoroDurations {
@@ -109,4 +109,4 @@ std::string summary_markdown(const std::vector<VariantSummary>& summaries, const
 std::string write_summaries(const std::filesystem::path& dir, const std::vector<std::string>& variant_order,
                             const std::string& title, int threads = 1);
 
-}  // namespace freeplay::runs
+}  // namespace freeplay::results

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "freeplay/runner/suite.hpp"
-#include "freeplay/runs/run_folder.hpp"
+#include "freeplay/results/run_folder.hpp"
 
 namespace freeplay::runner {
 
@@ -83,6 +83,6 @@ RunReport run_suite(const Suite& suite, const RunOptions& options, const Episode
                     std::atomic<bool>& stop);
 
 /// The episodes a run of `suite` must hold (with configuration hashes); `title` defaults to the suite name.
-runs::ExpectedRun expected_run(const Suite& suite, const std::string& title = {});
+results::ExpectedRun expected_run(const Suite& suite, const std::string& title = {});
 
 }  // namespace freeplay::runner
