@@ -12,8 +12,8 @@
 #include "command_registry.hpp"
 #include "freeplay/core/atomic_file.hpp"
 #include "freeplay/core/error.hpp"
-#include "freeplay/runner/run_folder.hpp"
 #include "freeplay/runner/suite.hpp"
+#include "freeplay/results/run_folder.hpp"
 #include "run_command.hpp"
 #include "vocabulary.hpp"
 
@@ -80,7 +80,7 @@ void dataset_command(const DatasetOptions& o) {
   int moved = 0;
   for (const auto& variant : suite.variants) {
     for (int i = 0; i < variant.scenario.episodes; ++i, ++ordinal) {
-      const auto id = runner::RunFolder::episode_file_id(variant.id, i);
+      const auto id = results::RunFolder::episode_file_id(variant.id, i);
       const auto name = session_folder_name(ordinal);
       const auto source = root / "run" / "sessions" / id;
       const auto target = data / name;

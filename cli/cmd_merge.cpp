@@ -8,7 +8,7 @@
 
 #include "command_registry.hpp"
 #include "freeplay/analysis/merge.hpp"
-#include "freeplay/runner/suite.hpp"
+#include "freeplay/runner/suite_runner.hpp"
 #include "vocabulary.hpp"
 
 namespace freeplay::cli {
@@ -23,12 +23,12 @@ struct MergeOptions {
 };
 
 void merge(const MergeOptions& o) {
-  std::optional<analysis::ExpectedRun> expected;
+  std::optional<results::ExpectedRun> expected;
   if (!o.suite.empty()) {
     const auto suite = runner::is_suite_file(o.suite)
                            ? runner::load_suite(o.suite, o.overrides, scenario_vocabulary())
                            : runner::single_scenario_suite(o.suite, o.overrides, scenario_vocabulary());
-    expected = analysis::expected_from_suite(suite, o.title);
+    expected = runner::expected_run(suite, o.title);
   }
   const std::vector<std::filesystem::path> inputs(o.inputs.begin(), o.inputs.end());
   const auto report = analysis::merge_runs(inputs, o.out, expected);

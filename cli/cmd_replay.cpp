@@ -15,7 +15,7 @@
 #include "freeplay/core/error.hpp"
 #include "freeplay/recording/child_replay.hpp"
 #include "freeplay/recording/replay.hpp"
-#include "freeplay/runner/run_folder.hpp"
+#include "freeplay/results/run_folder.hpp"
 #include "vocabulary.hpp"
 
 namespace freeplay::cli {
@@ -53,8 +53,8 @@ void replay_children(const ReplayOptions& o) {
   const auto models = runner::SharedModels::load_default();
   auto result = recording::replay_children(recorded, scenario, models);
   const std::string variant = "replay";
-  const auto id = runner::RunFolder::episode_file_id(variant, 0);
-  runner::RunFolder folder(o.out.empty() ? runner::RunFolder::default_dir("replay-" + recorded.episode_id)
+  const auto id = results::RunFolder::episode_file_id(variant, 0);
+  results::RunFolder folder(o.out.empty() ? results::RunFolder::default_dir("replay-" + recorded.episode_id)
                                          : std::filesystem::path(o.out));
   if (folder.finished(variant, 0, scenario.config_hash)) {
     throw InputError(fmt::format("'{}' already holds this replay", folder.dir().string()), "--out",

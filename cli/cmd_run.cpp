@@ -16,8 +16,8 @@
 #include "freeplay/core/error.hpp"
 #include "freeplay/policies/play_policy.hpp"
 #include "freeplay/runner/episode.hpp"
-#include "freeplay/runner/run_folder.hpp"
 #include "freeplay/runner/suite_runner.hpp"
+#include "freeplay/results/run_folder.hpp"
 #include "vocabulary.hpp"
 
 namespace freeplay::cli {
@@ -58,7 +58,7 @@ std::optional<std::filesystem::path> unfinished_run(const nlohmann::json& identi
   if (!std::filesystem::is_directory(runs)) return std::nullopt;
   std::optional<std::filesystem::path> best;
   for (const auto& entry : std::filesystem::directory_iterator(runs)) {
-    const auto meta = entry.path() / "run.json";
+    const auto meta = entry.path() / results::kRunManifestFile;
     if (!std::filesystem::exists(meta)) continue;
     try {
       auto j = nlohmann::json::parse(read_file(meta));
@@ -108,7 +108,7 @@ void run_command(const RunCommandOptions& o, bool suite_command) {
       out = *previous;
       spdlog::info("resuming the unfinished run {} (same command); pass --out to start elsewhere", out.string());
     } else {
-      out = runner::RunFolder::default_dir(suite.name);
+      out = results::RunFolder::default_dir(suite.name);
     }
   }
   std::filesystem::create_directories(out);
@@ -118,7 +118,7 @@ void run_command(const RunCommandOptions& o, bool suite_command) {
     auto meta = identity;
     meta["title"] = title;
     meta["complete"] = complete;
-    write_file_atomically(out / "run.json", meta.dump(2) + "\n");
+    write_file_atomically(out / results::kRunManifestFile, meta.dump(2) + "\n");
   };
   write_run_json(false);
 

@@ -14,10 +14,13 @@
 #include "freeplay/core/atomic_file.hpp"
 #include "freeplay/core/error.hpp"
 #include "freeplay/core/yaml_schema.hpp"
-#include "freeplay/runner/run_folder.hpp"
-#include "freeplay/runner/suite_runner.hpp"
+#include "freeplay/results/run_folder.hpp"
+#include "freeplay/results/summary.hpp"
 
 namespace freeplay::analysis {
+
+using results::ExpectedRun;
+using results::kRunManifestFile;
 
 namespace {
 
@@ -100,13 +103,6 @@ std::optional<std::pair<int, int>> shard_of(const nlohmann::json& manifest) {
 }
 
 }  // namespace
-
-ExpectedRun expected_from_suite(const runner::Suite& suite, const std::string& title) {
-  ExpectedRun expected;
-  expected.title = title.empty() ? suite.name : title;
-  for (const auto& v : suite.variants) expected.variants.push_back({v.id, v.scenario.episodes, v.scenario.config_hash});
-  return expected;
-}
 
 MergeReport merge_runs(const std::vector<fs::path>& inputs, const fs::path& out,
                        const std::optional<ExpectedRun>& expected_override) {
@@ -230,7 +226,7 @@ MergeReport merge_runs(const std::vector<fs::path>& inputs, const fs::path& out,
   int episodes = 0;
   for (std::size_t input = 0; input < runs.size(); ++input) {
     const auto& r = runs[input];
-    runner::RunFolder(r.dir).for_each_record([&](const nlohmann::json& record) {
+    results::RunFolder(r.dir).for_each_record([&](const nlohmann::json& record) {
       const auto variant = record.value("variant", std::string{});
       const int index = record.value("episode", -1);
       const auto name = fmt::format("{} #{}", variant, index);
@@ -324,12 +320,12 @@ MergeReport merge_runs(const std::vector<fs::path>& inputs, const fs::path& out,
     }
     write_file_atomically(staging / "episodes.jsonl", [&](const std::function<void(std::string_view)>& write) {
       for (const auto& r : runs) {
-        runner::RunFolder(r.dir).for_each_record([&](const nlohmann::json& record) { write(record.dump() + "\n"); });
+        results::RunFolder(r.dir).for_each_record([&](const nlohmann::json& record) { write(record.dump() + "\n"); });
       }
     });
     std::vector<std::string> order;
     for (const auto& v : expected.variants) order.push_back(v.id);
-    runner::RunFolder(staging).finalize(order);  // the same order and bytes as a single-machine run
+    results::RunFolder(staging).finalize(order);  // the same order and bytes as a single-machine run
     if (with_manifest > 0) {
       auto manifest = *runs.front().manifest;
       if (manifest.contains("shard")) manifest["shard"] = {zero_based ? 0 : 1, 1};
@@ -338,10 +334,7 @@ MergeReport merge_runs(const std::vector<fs::path>& inputs, const fs::path& out,
       manifest["merged_from"] = sources;
       write_file_atomically(staging / kRunManifestFile, manifest.dump(2) + "\n");
     }
-    runner::Suite suite;
-    suite.name = expected.title;
-    for (const auto& v : expected.variants) suite.variants.push_back({v.id, {}});
-    runner::write_summaries(staging, suite, expected.title);
+    results::write_summaries(staging, order, expected.title);
     if (fs::exists(out)) fs::remove(out);  // empty (checked above)
     fs::rename(staging, out);
   } catch (...) {

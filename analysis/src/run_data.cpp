@@ -6,8 +6,8 @@
 #include <algorithm>
 
 #include "freeplay/core/error.hpp"
-#include "freeplay/runner/run_folder.hpp"
-#include "freeplay/runner/summary.hpp"
+#include "freeplay/results/run_folder.hpp"
+#include "freeplay/results/summary.hpp"
 
 namespace freeplay::analysis {
 
@@ -23,7 +23,7 @@ bool RunData::has_variant(const std::string& variant) const {
 }
 
 std::map<std::string, double> comparable_metrics(const nlohmann::json& record) {
-  auto values = runner::flatten_numbers(record.value("metrics", nlohmann::json::object()), "metrics");
+  auto values = results::flatten_numbers(record.value("metrics", nlohmann::json::object()), "metrics");
   const auto duration = record.find("duration_s");
   if (duration != record.end() && duration->is_number()) values["duration_s"] = duration->get<double>();
   return values;
@@ -70,7 +70,7 @@ RunData load_run(const std::filesystem::path& dir) {
     throw InputError(fmt::format("'{}' is not a run folder (it has no episodes.jsonl)", dir.string()), "RUN",
                      "a folder written by `freeplay run` or `freeplay suite`");
   }
-  const runner::RunFolder folder(dir);
+  const results::RunFolder folder(dir);
   auto run = run_from_records(folder.records(), dir.string());
   if (run.episodes.empty()) {
     throw InputError(fmt::format("the run folder '{}' holds no finished episode", dir.string()), "RUN",

@@ -10,6 +10,7 @@
 #include "freeplay/stage/avatar_controller.hpp"
 #include "freeplay/stage/nao_controller.hpp"
 #include "freeplay/stage/renderer.hpp"
+#include "raw_mujoco.hpp"
 
 namespace freeplay::stage {
 namespace {
@@ -31,8 +32,8 @@ void BM_MjStepDynamicNaoScene(benchmark::State& state) {
   Stage stage(model_for(SceneKind::child_robot), StageMode::dynamic);
   NaoController nao(stage);
   nao.point_at({0.22, -0.04});
-  const mjModel* m = stage.model().mj();
-  mjData* d = stage.data();
+  const mjModel* m = raw_model(stage.model());
+  mjData* d = raw_data(stage);
   for (auto _ : state) {
     mj_step(m, d);
     benchmark::DoNotOptimize(d->qacc[0]);
@@ -53,9 +54,9 @@ BENCHMARK(BM_StageStepDynamic);
 void BM_KinematicStageUpdate(benchmark::State& state) {
   Stage stage(model_for(state.range(0) == 0 ? SceneKind::child_child : SceneKind::child_robot));
   for (auto _ : state) {
-    stage.data()->qpos[0] += 1e-9;
+    raw_data(stage)->qpos[0] += 1e-9;
     stage.update_kinematics();
-    benchmark::DoNotOptimize(stage.data()->xpos[3]);
+    benchmark::DoNotOptimize(raw_data(stage)->xpos[3]);
   }
 }
 BENCHMARK(BM_KinematicStageUpdate)->Arg(0)->Arg(1)->ArgName("child_robot");

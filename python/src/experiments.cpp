@@ -11,9 +11,9 @@
 #include "bindings.hpp"
 #include "command_registry.hpp"
 #include "freeplay/core/error.hpp"
-#include "freeplay/runner/run_folder.hpp"
 #include "freeplay/runner/suite.hpp"
 #include "freeplay/runner/suite_runner.hpp"
+#include "freeplay/results/run_folder.hpp"
 #include "run_command.hpp"
 #include "vocabulary.hpp"
 
@@ -52,7 +52,7 @@ py::dict suite_data(const runner::Suite& suite, bool is_suite) {
 
 // A folder that does not exist yet: runs/<UTC time>-<name>, with -2, -3, … when runs start within one second.
 std::string fresh_run_dir(const std::string& name) {
-  const auto base = runner::RunFolder::default_dir(name);
+  const auto base = results::RunFolder::default_dir(name);
   auto dir = base;
   for (int k = 2; std::filesystem::exists(dir); ++k) dir = base.string() + fmt::format("-{}", k);
   return dir.string();

@@ -16,8 +16,8 @@
 #include "freeplay/recording/bag_recorder.hpp"
 #include "freeplay/recording/publishers.hpp"
 #include "freeplay/recording/ros_messages.hpp"
-#include "freeplay/runner/episode_metrics.hpp"
-#include "freeplay/runner/summary.hpp"
+#include "freeplay/results/episode_metrics.hpp"
+#include "freeplay/results/summary.hpp"
 #include "freeplay/sim/canvas.hpp"
 
 namespace freeplay::recording {
@@ -71,7 +71,7 @@ double replay_drawing_coverage(const SessionRecording& rec, double freeplay_star
 }
 
 /// The recorded /tf and /zones at one tick, as the metrics' world.
-class RecordedWorld final : public runner::MetricsWorld {
+class RecordedWorld final : public results::MetricsWorld {
  public:
   RecordedWorld(const SessionRecording& rec, double tick) : rec_(rec), tick_(tick) {}
   Vec2 item_position(const std::string& item) const override { return freeplay::recording::item_position(rec_, tick_, item); }
@@ -99,7 +99,8 @@ class RecordedWorld final : public runner::MetricsWorld {
 
 /// Feeds the recording's events to `metrics` as the episode loop fed them: events before free play, then each
 /// free-play tick's events followed by that tick's gaze measurement, then the rest (a release in the debriefing).
-void feed_events(const SessionRecording& rec, double freeplay_start, double duration, runner::EpisodeMetrics& metrics) {
+void feed_events(const SessionRecording& rec, double freeplay_start, double duration,
+                 results::EpisodeMetrics& metrics) {
   std::string ended_by = "cap";
   for (const auto& [tick, e] : rec.events) {
     if (e.source == "protocol" && e.type == "freeplay_ended") ended_by = e.data.value("ended_by", "cap");
@@ -199,7 +200,7 @@ nlohmann::json recompute(const SessionRecording& rec) {
     annotations = agents::parse_pinsoro_yaml(rec.annotations_yaml, rec.bag.string() + ":/freeplay/annotations");
     if (annotations.yellow) child_robot = false;
   }
-  runner::EpisodeMetrics metrics(child_robot);
+  results::EpisodeMetrics metrics(child_robot);
   feed_events(rec, freeplay_start, duration, metrics);
   const double coverage = std::isnan(duration) ? std::nan("")
                                                : replay_drawing_coverage(rec, freeplay_start, freeplay_start + duration);
@@ -253,7 +254,8 @@ nlohmann::json recompute_metrics(const SessionRecording& rec) {
 }
 
 std::map<std::string, double> metric_values(const nlohmann::json& record) {
-  return runner::flatten_numbers(record.value("metrics", nlohmann::json::object()), "metrics", runner::NullLeaves::as_nan);
+  return results::flatten_numbers(record.value("metrics", nlohmann::json::object()), "metrics",
+                                  results::NullLeaves::as_nan);
 }
 
 std::vector<MetricComparison> compare_with_record(const nlohmann::json& recomputed, const nlohmann::json& record) {

@@ -14,14 +14,14 @@
 #include <sstream>
 
 #include "freeplay/core/error.hpp"
-#include "freeplay/core/statistics.hpp"
 #include "freeplay/core/rng.hpp"
+#include "freeplay/core/statistics.hpp"
 #include "freeplay/planning/move_executor.hpp"
 #include "freeplay/planning/plan.hpp"
 #include "freeplay/runner/move_driver.hpp"
-#include "freeplay/runner/run_folder.hpp"
 #include "freeplay/runner/sandtray_world.hpp"
 #include "freeplay/runner/versions.hpp"
+#include "freeplay/results/run_folder.hpp"
 #include "freeplay/sim/sandtray.hpp"
 #include "freeplay/sim/screen.hpp"
 #include "freeplay/stage/nao_controller.hpp"
@@ -615,7 +615,7 @@ EpisodeOutput run_controller_task(const EpisodeTask& task, const SharedModels& m
   auto result = run_controller_episode(task.variant->scenario, task.seed, models, stop);
   EpisodeOutput out;
   if (result.aborted) return out;
-  const auto id = RunFolder::episode_file_id(task.variant->id, task.index);
+  const auto id = results::RunFolder::episode_file_id(task.variant->id, task.index);
   result.record["trace_file"] = "traces/" + id + ".jsonl";
   out.record = std::move(result.record);
   out.simulated_s = result.simulated_s;

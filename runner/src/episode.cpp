@@ -10,8 +10,8 @@
 #include "freeplay/agents/coder.hpp"
 #include "freeplay/policies/play_policy.hpp"
 #include "freeplay/runner/controller_episode.hpp"
-#include "freeplay/runner/run_folder.hpp"
 #include "freeplay/runner/sandtray_world.hpp"
+#include "freeplay/results/run_folder.hpp"
 #include "sim_world.hpp"
 
 namespace freeplay::runner {
@@ -247,7 +247,7 @@ EpisodeFunction episode_function(const SharedModels& models, ObserverFactory obs
   return [&models, observers = std::move(observers), run_dir = std::move(run_dir)](const EpisodeTask& task,
                                                                                    const std::atomic<bool>& stop) {
     if (task.variant->scenario.kind == ScenarioKind::controller) return run_controller_task(task, models, stop);
-    const auto id = RunFolder::episode_file_id(task.variant->id, task.index);
+    const auto id = results::RunFolder::episode_file_id(task.variant->id, task.index);
     EpisodeObservers attached = observers ? observers(task.variant->scenario, run_dir) : EpisodeObservers{};
     auto result = run_episode({.scenario = task.variant->scenario,
                                .seed = task.seed,

@@ -1,9 +1,9 @@
-// The live sandtray as the metrics' world (apart from episode_metrics.cpp, which needs no simulation to link).
-#include "freeplay/runner/episode_metrics.hpp"
+// The live sandtray as the metrics' world (apart from results/src/episode_metrics.cpp, which links no simulation).
 #include "freeplay/sim/sandtray.hpp"
 #include "freeplay/sim/zones.hpp"
+#include "sim_world.hpp"
 
-namespace freeplay::runner {
+namespace freeplay::runner::detail {
 
 Vec2 SandtrayMetricsWorld::item_position(const std::string& item) const { return tray_.item(item).pose.position(); }
 
@@ -12,4 +12,4 @@ std::string SandtrayMetricsWorld::zone_at(const Vec2& p) const {
   return zone != nullptr ? zone->colour : "";
 }
 
-}  // namespace freeplay::runner
+}  // namespace freeplay::runner::detail

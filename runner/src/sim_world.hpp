@@ -6,8 +6,8 @@
 //
 // Its methods live in three files along their seams: sim_world.cpp (children, coder, snapshots),
 // sim_world_robot.cpp (the robot in the room: observation, actuators, external commands) and sim_world_events.cpp
-// (the game's events and the episode record). The metrics are EpisodeMetrics' (episode_metrics.cpp), fed the event
-// log as replay feeds a recording.
+// (the game's events and the episode record). The metrics are results::EpisodeMetrics'
+// (results/src/episode_metrics.cpp), fed the event log as replay feeds a recording.
 
 #include <array>
 #include <map>
@@ -25,13 +25,25 @@
 #include "freeplay/core/rng.hpp"
 #include "freeplay/runner/child_action_source.hpp"
 #include "freeplay/runner/episode.hpp"
-#include "freeplay/runner/episode_metrics.hpp"
 #include "freeplay/runner/perception_model.hpp"
 #include "freeplay/runner/robot_action_source.hpp"
 #include "freeplay/runner/robot_side.hpp"
+#include "freeplay/results/episode_metrics.hpp"
 #include "freeplay/sim/sandtray.hpp"
 
 namespace freeplay::runner::detail {
+
+/// The live sandtray as the metrics' world (sandtray_metrics_world.cpp).
+class SandtrayMetricsWorld final : public results::MetricsWorld {
+ public:
+  /// Reads `tray` (not owned) when asked.
+  explicit SandtrayMetricsWorld(const sim::Sandtray& tray) : tray_(tray) {}
+  Vec2 item_position(const std::string& item) const override;
+  std::string zone_at(const Vec2& p) const override;
+
+ private:
+  const sim::Sandtray& tray_;
+};
 
 inline constexpr double kTickS = 0.1;  ///< the game's 10 Hz tick
 
@@ -182,7 +194,7 @@ class SimWorld final : public RobotWorld {
   Eigen::Vector3d robot_gaze_point_;
   std::vector<std::string> pending_interaction_events_;
   // Metrics.
-  EpisodeMetrics metrics_{child_robot_};  // fed the event log at every drain of the tray's events
+  results::EpisodeMetrics metrics_{child_robot_};  // fed the event log at every drain of the tray's events
   cv::Mat freeplay_map_;           // the background published when free play started (the bare map)
   double drawing_coverage_ = 0.0;  // share of the map drawn over in the last background published in free play
   // Snapshots.

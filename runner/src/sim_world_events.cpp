@@ -2,8 +2,8 @@
 // (EpisodeMetrics, which replay feeds the same way), and the episode record.
 
 #include "freeplay/agents/labels.hpp"
-#include "freeplay/runner/run_folder.hpp"
 #include "freeplay/runner/versions.hpp"
+#include "freeplay/results/run_folder.hpp"
 #include "sim_world.hpp"
 
 namespace freeplay::runner::detail {

@@ -10,8 +10,8 @@
 #include "freeplay/core/rng.hpp"
 #include "freeplay/policies/play_policy.hpp"
 #include "freeplay/runner/progress.hpp"
-#include "freeplay/runner/run_folder.hpp"
-#include "freeplay/runner/summary.hpp"
+#include "freeplay/results/run_folder.hpp"
+#include "freeplay/results/summary.hpp"
 
 namespace freeplay::runner {
 
@@ -35,20 +35,6 @@ bool in_shard(const std::string& variant_id, int index, int shard_index, int sha
          static_cast<std::uint64_t>(shard_index);
 }
 
-std::string write_summaries(const std::filesystem::path& dir, const Suite& suite, const std::string& title,
-                            int threads) {
-  RunFolder folder(dir);
-  std::vector<std::string> order;
-  for (const auto& v : suite.variants) order.push_back(v.id);
-  RunSummarizer summarizer(order);
-  folder.for_each_record([&](const nlohmann::json& record) { summarizer.add(record); });
-  const auto summaries = summarizer.finish(threads);
-  const auto markdown = summary_markdown(summaries, title);
-  folder.write("summary.csv", summary_csv(summaries));
-  folder.write("summary.md", markdown);
-  return markdown;
-}
-
 void check_policies(const Suite& suite) {
   for (const auto& variant : suite.variants) {
     const auto& scenario = variant.scenario;
@@ -57,13 +43,20 @@ void check_policies(const Suite& suite) {
   }
 }
 
+results::ExpectedRun expected_run(const Suite& suite, const std::string& title) {
+  results::ExpectedRun expected;
+  expected.title = title.empty() ? suite.name : title;
+  for (const auto& v : suite.variants) expected.variants.push_back({v.id, v.scenario.episodes, v.scenario.config_hash});
+  return expected;
+}
+
 RunReport run_suite(const Suite& suite, const RunOptions& options, const EpisodeFunction& run_episode,
                     std::atomic<bool>& stop) {
   if (options.shard_count < 1 || options.shard_index < 0 || options.shard_index >= options.shard_count) {
     throw InputError(fmt::format("shard {}/{} does not exist", options.shard_index + 1, options.shard_count),
                      "--shard", "I/N with 1 ≤ I ≤ N");
   }
-  RunFolder folder(options.out);
+  results::RunFolder folder(options.out);
   if (folder.dropped_partial_line()) {
     spdlog::warn("{}: dropped an incomplete last line of episodes.jsonl (an interrupted write); that episode "
                  "runs again", folder.dir().string());
@@ -109,12 +102,12 @@ RunReport run_suite(const Suite& suite, const RunOptions& options, const Episode
       try {
         auto output = run_episode(task, stop);
         if (stop.load() && output.record.is_null()) return;  // aborted mid-episode: not recorded
-        const auto file_id = RunFolder::episode_file_id(task.variant->id, task.index);
+        const auto file_id = results::RunFolder::episode_file_id(task.variant->id, task.index);
         for (const auto& [relative, contents] : output.files) {
           const bool event_log = relative.starts_with("events/");
           if (event_log && events == EventsOutput::None) continue;
           if (event_log && events == EventsOutput::Gz) {
-            folder.write(relative + ".gz", gzip_compress(contents));
+            folder.write(relative + ".gz", results::gzip_compress(contents));
           } else {
             folder.write(relative, contents);
           }
@@ -152,7 +145,7 @@ RunReport run_suite(const Suite& suite, const RunOptions& options, const Episode
   folder.finalize(order);
   report.finished = static_cast<int>(folder.record_count()) - report.skipped;
   report.interrupted = stop.load() && report.skipped + report.finished < report.total;
-  write_summaries(folder.dir(), suite, options.title.empty() ? suite.name : options.title, options.jobs);
+  results::write_summaries(folder.dir(), order, options.title.empty() ? suite.name : options.title, options.jobs);
   if (first_error) std::rethrow_exception(first_error);
   return report;
 }

@@ -6,6 +6,7 @@
 
 #include "freeplay/core/error.hpp"
 #include "freeplay/stage/pan_tilt.hpp"
+#include "raw_mujoco.hpp"
 
 namespace freeplay::stage {
 namespace {
@@ -27,15 +28,15 @@ AvatarController::AvatarController(Stage& stage, ChildRole role) : stage_(stage)
   }
 }
 
-double AvatarController::qpos(int address) const { return stage_.data()->qpos[address]; }
+double AvatarController::qpos(int address) const { return raw_data(stage_)->qpos[address]; }
 
 void AvatarController::set(int address, double value) {
-  const mjModel* m = stage_.model().mj();
+  const mjModel* m = raw_model(stage_.model());
   int joint = -1;
   for (int j = 0; j < m->njnt; ++j) {
     if (m->jnt_qposadr[j] == address) joint = j;
   }
-  stage_.data()->qpos[address] = std::clamp(value, m->jnt_range[2 * joint], m->jnt_range[2 * joint + 1]);
+  raw_data(stage_)->qpos[address] = std::clamp(value, m->jnt_range[2 * joint], m->jnt_range[2 * joint + 1]);
 }
 
 void AvatarController::rest() {
@@ -56,7 +57,7 @@ void AvatarController::lower_hand(Hand hand) {
 }
 
 GazeResult AvatarController::look_at(const Eigen::Vector3d& point) {
-  const mjModel* m = stage_.model().mj();
+  const mjModel* m = raw_model(stage_.model());
   const int head = m->site_bodyid[avatar_.eyes_site];
   const Vector3d pelvis = body_offset(m, avatar_.pelvis_body);
   const Vector3d neck = body_offset(m, head);
@@ -77,7 +78,7 @@ TouchResult AvatarController::touch(const Eigen::Vector2d& screen_point, Hand ha
 }
 
 TouchResult AvatarController::reach(const Eigen::Vector3d& target_world, Hand hand) {
-  const mjModel* m = stage_.model().mj();
+  const mjModel* m = raw_model(stage_.model());
   const auto side = static_cast<size_t>(hand);
   const int tip_site = avatar_.hand_tip_site[side];
   const int forearm = m->site_bodyid[tip_site];

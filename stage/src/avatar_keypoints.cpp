@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "freeplay/core/error.hpp"
+#include "raw_mujoco.hpp"
 
 namespace freeplay::stage {
 
@@ -85,8 +86,8 @@ AvatarKeypoints avatar_keypoints(const Stage& stage, ChildRole role) {
   if (!index.present) {
     throw InputError(fmt::format("the scene has no {} child", child_role_name(role)), "avatar", "a child's seat");
   }
-  const mjModel* m = stage.model().mj();
-  const mjData* d = stage.data();
+  const mjModel* m = raw_model(stage.model());
+  const mjData* d = raw_data(stage);
   const std::string p(child_role_name(role));
   AvatarKeypoints k;
   auto body = [&](CocoPoint point) -> Eigen::Vector3d& { return k.body[static_cast<std::size_t>(point)]; };

@@ -10,6 +10,7 @@
 
 #include "freeplay/core/error.hpp"
 #include "freeplay/stage/pan_tilt.hpp"
+#include "raw_mujoco.hpp"
 
 namespace freeplay::stage {
 namespace {
@@ -190,24 +191,35 @@ class ArmChain {
   double length_ = 0;  // the first hinge's anchor to the fingertip along the chain: no pose reaches farther
 };
 
-NaoController::NaoController(Stage& stage) : stage_(stage), nao_(stage.model().nao()) {
+// A MuJoCo state for trial poses (placing the base, the arm's base pose, gravity feed-forward) and the gravity
+// torques; the state is made on first use.
+struct NaoController::Scratch {
+  mjData* data = nullptr;
+  std::vector<mjtNum> gravity;
+  Scratch() = default;
+  Scratch(const Scratch&) = delete;
+  Scratch& operator=(const Scratch&) = delete;
+  ~Scratch() { if (data != nullptr) mj_deleteData(data); }
+};
+
+NaoController::NaoController(Stage& stage)
+    : stage_(stage), nao_(stage.model().nao()), scratch_(std::make_unique<Scratch>()) {
   if (!nao_.present) throw InputError("this stage has no NAO (use the child-robot scene)", "scene", "child-robot");
-  const mjData* d = stage_.data();
+  const mjData* d = raw_data(stage_);
   for (int i = 0; i < kNaoJointCount; ++i) targets_[static_cast<size_t>(i)] = d->qpos[nao_.qpos[static_cast<size_t>(i)]];
 }
 
-NaoController::~NaoController() {
-  if (scratch_ != nullptr) mj_deleteData(scratch_);
-}
+NaoController::~NaoController() = default;
 
 NaoJointVector NaoController::joint_positions() const {
   NaoJointVector q{};
-  for (int i = 0; i < kNaoJointCount; ++i) q[static_cast<size_t>(i)] = stage_.data()->qpos[nao_.qpos[static_cast<size_t>(i)]];
+  for (int i = 0; i < kNaoJointCount; ++i)
+    q[static_cast<size_t>(i)] = raw_data(stage_)->qpos[nao_.qpos[static_cast<size_t>(i)]];
   return q;
 }
 
 void NaoController::set_joint_targets(const NaoJointVector& targets) {
-  const mjModel* m = stage_.model().mj();
+  const mjModel* m = raw_model(stage_.model());
   for (int i = 0; i < kNaoJointCount; ++i) {
     const int joint = nao_.joint[static_cast<size_t>(i)];
     targets_[static_cast<size_t>(i)] =
@@ -218,7 +230,7 @@ void NaoController::set_joint_targets(const NaoJointVector& targets) {
 }
 
 void NaoController::write_targets() {
-  mjData* d = stage_.data();
+  mjData* d = raw_data(stage_);
   if (stage_.mode() == StageMode::kinematic) {
     for (int i = 0; i < kNaoJointCount; ++i) d->qpos[nao_.qpos[static_cast<size_t>(i)]] = targets_[static_cast<size_t>(i)];
   }
@@ -229,40 +241,42 @@ void NaoController::apply() {
   if (stage_.mode() != StageMode::dynamic) return;
   // Position targets plus the gravity torque at the target pose divided by the servo gain (feed-forward), so
   // the arm settles on the target instead of sagging by τ_gravity / kp.
-  const mjModel* m = stage_.model().mj();
-  if (scratch_ == nullptr) scratch_ = mj_makeData(m);
-  mju_copy(scratch_->qpos, stage_.data()->qpos, m->nq);
-  mju_copy(scratch_->mocap_pos, stage_.data()->mocap_pos, 3 * m->nmocap);
-  mju_copy(scratch_->mocap_quat, stage_.data()->mocap_quat, 4 * m->nmocap);
-  for (int i = 0; i < kNaoJointCount; ++i) scratch_->qpos[nao_.qpos[static_cast<size_t>(i)]] = targets_[static_cast<size_t>(i)];
-  mju_zero(scratch_->qvel, m->nv);
-  mj_kinematics(m, scratch_);
-  mj_comPos(m, scratch_);
-  mj_comVel(m, scratch_);
-  gravity_.resize(static_cast<size_t>(m->nv));
-  mj_rne(m, scratch_, 0, gravity_.data());
-  mjData* d = stage_.data();
+  const mjModel* m = raw_model(stage_.model());
+  if (scratch_->data == nullptr) scratch_->data = mj_makeData(m);
+  mju_copy(scratch_->data->qpos, raw_data(stage_)->qpos, m->nq);
+  mju_copy(scratch_->data->mocap_pos, raw_data(stage_)->mocap_pos, 3 * m->nmocap);
+  mju_copy(scratch_->data->mocap_quat, raw_data(stage_)->mocap_quat, 4 * m->nmocap);
+  for (int i = 0; i < kNaoJointCount; ++i)
+    scratch_->data->qpos[nao_.qpos[static_cast<size_t>(i)]] = targets_[static_cast<size_t>(i)];
+  mju_zero(scratch_->data->qvel, m->nv);
+  mj_kinematics(m, scratch_->data);
+  mj_comPos(m, scratch_->data);
+  mj_comVel(m, scratch_->data);
+  scratch_->gravity.resize(static_cast<size_t>(m->nv));
+  mj_rne(m, scratch_->data, 0, scratch_->gravity.data());
+  mjData* d = raw_data(stage_);
   for (int i = 0; i < kNaoJointCount; ++i) {
     const int actuator = nao_.actuator[static_cast<size_t>(i)];
     if (actuator < 0) continue;
     const double kp = m->actuator_gainprm[actuator * mjNGAIN];
-    const double feed_forward = gravity_[static_cast<size_t>(nao_.dof[static_cast<size_t>(i)])] / kp;
+    const double feed_forward = scratch_->gravity[static_cast<size_t>(nao_.dof[static_cast<size_t>(i)])] / kp;
     d->ctrl[actuator] = std::clamp(targets_[static_cast<size_t>(i)] + feed_forward, m->actuator_ctrlrange[2 * actuator],
                                    m->actuator_ctrlrange[2 * actuator + 1]);
   }
 }
 
 void NaoController::place_base(const NaoJointVector& posture) {
-  const mjModel* m = stage_.model().mj();
-  if (scratch_ == nullptr) scratch_ = mj_makeData(m);
-  for (int i = 0; i < kNaoJointCount; ++i) scratch_->qpos[nao_.qpos[static_cast<size_t>(i)]] = posture[static_cast<size_t>(i)];
+  const mjModel* m = raw_model(stage_.model());
+  if (scratch_->data == nullptr) scratch_->data = mj_makeData(m);
+  for (int i = 0; i < kNaoJointCount; ++i)
+    scratch_->data->qpos[nao_.qpos[static_cast<size_t>(i)]] = posture[static_cast<size_t>(i)];
   const int mocap = nao_.torso_mocap;
-  mju_zero3(scratch_->mocap_pos + 3 * mocap);
-  mju_unit4(scratch_->mocap_quat + 4 * mocap);
-  mj_kinematics(m, scratch_);
-  const Vector3d l_sole = Eigen::Map<const Vector3d>(scratch_->site_xpos + 3 * nao_.l_sole_site);
-  const Vector3d r_sole = Eigen::Map<const Vector3d>(scratch_->site_xpos + 3 * nao_.r_sole_site);
-  const RowMatrix3d sole_r = Eigen::Map<const RowMatrix3d>(scratch_->site_xmat + 9 * nao_.l_sole_site);
+  mju_zero3(scratch_->data->mocap_pos + 3 * mocap);
+  mju_unit4(scratch_->data->mocap_quat + 4 * mocap);
+  mj_kinematics(m, scratch_->data);
+  const Vector3d l_sole = Eigen::Map<const Vector3d>(scratch_->data->site_xpos + 3 * nao_.l_sole_site);
+  const Vector3d r_sole = Eigen::Map<const Vector3d>(scratch_->data->site_xpos + 3 * nao_.r_sole_site);
+  const RowMatrix3d sole_r = Eigen::Map<const RowMatrix3d>(scratch_->data->site_xmat + 9 * nao_.l_sole_site);
   const Eigen::Matrix3d torso_r =
       Eigen::AngleAxisd(nao_.facing_yaw, Vector3d::UnitZ()).toRotationMatrix() * sole_r.transpose();
   // Soles' midpoint over the anchor; the lower sole on the floor (both are flat and level in every posture).
@@ -271,7 +285,7 @@ void NaoController::place_base(const NaoJointVector& posture) {
   Vector3d torso_p = nao_.sole_anchor - 0.5 * (l_world + r_world);
   torso_p.z() = nao_.sole_anchor.z() - std::min(l_world.z(), r_world.z());
   const Eigen::Quaterniond q(torso_r);
-  mjData* d = stage_.data();
+  mjData* d = raw_data(stage_);
   for (int k = 0; k < 3; ++k) d->mocap_pos[3 * mocap + k] = torso_p[k];
   d->mocap_quat[4 * mocap] = q.w();
   d->mocap_quat[4 * mocap + 1] = q.x();
@@ -284,7 +298,7 @@ void NaoController::go_to_posture(NaoPosture posture) {
   place_base(targets_);
   if (stage_.mode() == StageMode::dynamic) {
     // The posture change itself is not simulated: the robot starts there at rest.
-    mjData* d = stage_.data();
+    mjData* d = raw_data(stage_);
     for (int i = 0; i < kNaoJointCount; ++i) {
       d->qpos[nao_.qpos[static_cast<size_t>(i)]] = targets_[static_cast<size_t>(i)];
       d->qvel[nao_.dof[static_cast<size_t>(i)]] = 0.0;
@@ -294,8 +308,8 @@ void NaoController::go_to_posture(NaoPosture posture) {
 }
 
 GazeResult NaoController::look_at(const Eigen::Vector3d& point) {
-  const mjModel* m = stage_.model().mj();
-  const mjData* d = stage_.data();
+  const mjModel* m = raw_model(stage_.model());
+  const mjData* d = raw_data(stage_);
   // Pan/tilt is solved in the torso-aligned frame at the neck; the gaze origin is CameraTop's position. The torso
   // is the mocap body and the neck hangs from it with its joints at its origin, so neither needs the kinematics.
   Eigen::Matrix3d torso_r;
@@ -331,13 +345,13 @@ GazeResult NaoController::look_at(const Eigen::Vector3d& point) {
 
 // Copies the stage's state into the IK's scratch data (the Nao at its current targets) and poses the arm's base.
 NaoController::ArmBase NaoController::load_arm() {
-  const mjModel* m = stage_.model().mj();
-  if (scratch_ == nullptr) scratch_ = mj_makeData(m);
-  mju_copy(scratch_->qpos, stage_.data()->qpos, m->nq);
-  mju_copy(scratch_->mocap_pos, stage_.data()->mocap_pos, 3 * m->nmocap);
-  mju_copy(scratch_->mocap_quat, stage_.data()->mocap_quat, 4 * m->nmocap);
+  const mjModel* m = raw_model(stage_.model());
+  if (scratch_->data == nullptr) scratch_->data = mj_makeData(m);
+  mju_copy(scratch_->data->qpos, raw_data(stage_)->qpos, m->nq);
+  mju_copy(scratch_->data->mocap_pos, raw_data(stage_)->mocap_pos, 3 * m->nmocap);
+  mju_copy(scratch_->data->mocap_quat, raw_data(stage_)->mocap_quat, 4 * m->nmocap);
   for (int i = 0; i < kNaoJointCount; ++i) {
-    scratch_->qpos[nao_.qpos[static_cast<size_t>(i)]] = targets_[static_cast<size_t>(i)];
+    scratch_->data->qpos[nao_.qpos[static_cast<size_t>(i)]] = targets_[static_cast<size_t>(i)];
   }
   if (arm_chain_ == nullptr) {
     arm_chain_ = std::make_shared<ArmChain>(m, nao_);
@@ -347,22 +361,23 @@ NaoController::ArmBase NaoController::load_arm() {
   // mocap pose); any other base is posed once by the full kinematics.
   ArmBase base;
   if (arm_chain_->base() == nao_.torso_body && m->body_parentid[nao_.torso_body] == 0) {
-    base.position = Eigen::Map<const Vector3d>(scratch_->mocap_pos + 3 * nao_.torso_mocap);
-    base.orientation = quat_at(scratch_->mocap_quat + 4 * nao_.torso_mocap).normalized();
+    base.position = Eigen::Map<const Vector3d>(scratch_->data->mocap_pos + 3 * nao_.torso_mocap);
+    base.orientation = quat_at(scratch_->data->mocap_quat + 4 * nao_.torso_mocap).normalized();
   } else {
-    mj_kinematics(m, scratch_);
-    base.position = Eigen::Map<const Vector3d>(scratch_->xpos + 3 * arm_chain_->base());
-    base.orientation = quat_at(scratch_->xquat + 4 * arm_chain_->base());
+    mj_kinematics(m, scratch_->data);
+    base.position = Eigen::Map<const Vector3d>(scratch_->data->xpos + 3 * arm_chain_->base());
+    base.orientation = quat_at(scratch_->data->xquat + 4 * arm_chain_->base());
   }
   return base;
 }
 
 PointingResult NaoController::solve_pointing(const ArmBase& base, const Vector3d& target, const NaoJointVector& seed,
                                              bool retry, NaoJointVector* out) {
-  const mjModel* m = stage_.model().mj();
+  const mjModel* m = raw_model(stage_.model());
   // Only the arm moves during a solve, and the seed's other joints are the current targets: the scratch data
   // loaded by `load_arm` needs just the seed's joints.
-  for (int i = 0; i < kNaoJointCount; ++i) scratch_->qpos[nao_.qpos[static_cast<size_t>(i)]] = seed[static_cast<size_t>(i)];
+  for (int i = 0; i < kNaoJointCount; ++i)
+    scratch_->data->qpos[nao_.qpos[static_cast<size_t>(i)]] = seed[static_cast<size_t>(i)];
   const Vector3d& base_pos = base.position;
   const Eigen::Quaterniond& base_quat = base.orientation;
   Eigen::Matrix<double, 3, 5> j;
@@ -374,10 +389,10 @@ PointingResult NaoController::solve_pointing(const ArmBase& base, const Vector3d
   // pose are remembered, since the next solve usually starts from one of them (bit-identical inputs, same result).
   bool stopped = false;
   for (int iteration = 0; iteration < 150; ++iteration) {
-    fingertip = iteration == 0 ? arm_chain_->fingertip_recalled(base_pos, base_quat, scratch_->qpos, &j)
-                               : arm_chain_->fingertip(base_pos, base_quat, scratch_->qpos, &j);
+    fingertip = iteration == 0 ? arm_chain_->fingertip_recalled(base_pos, base_quat, scratch_->data->qpos, &j)
+                               : arm_chain_->fingertip(base_pos, base_quat, scratch_->data->qpos, &j);
     if (iteration == 0 && retry) {
-      arm_chain_->remember(ArmChain::kRetrySeed, base_pos, base_quat, scratch_->qpos, fingertip, j);
+      arm_chain_->remember(ArmChain::kRetrySeed, base_pos, base_quat, scratch_->data->qpos, fingertip, j);
     }
     const Vector3d error = (target - fingertip).cwiseProduct(weights);
     // Out of reach, the arm stretches towards the target and the error stops shrinking: stop there.
@@ -385,7 +400,7 @@ PointingResult NaoController::solve_pointing(const ArmBase& base, const Vector3d
               (iteration >= 8 && previous_error - error.norm() < 1e-5);
     if (stopped) {
       arm_chain_->remember(retry ? ArmChain::kLastOfRetry : ArmChain::kLastOfFirst, base_pos, base_quat,
-                           scratch_->qpos, fingertip, j);
+                           scratch_->data->qpos, fingertip, j);
       break;
     }
     previous_error = error.norm();
@@ -394,7 +409,7 @@ PointingResult NaoController::solve_pointing(const ArmBase& base, const Vector3d
       const int k = kRightArm[c];
       for (int r = 0; r < 3; ++r) j(r, static_cast<Eigen::Index>(c)) *= weights[r];
       const int joint = nao_.joint[static_cast<size_t>(k)];
-      q[static_cast<Eigen::Index>(c)] = scratch_->qpos[nao_.qpos[static_cast<size_t>(k)]];
+      q[static_cast<Eigen::Index>(c)] = scratch_->data->qpos[nao_.qpos[static_cast<size_t>(k)]];
       lo[static_cast<Eigen::Index>(c)] = m->jnt_range[2 * joint];
       hi[static_cast<Eigen::Index>(c)] = m->jnt_range[2 * joint + 1];
       preferred[static_cast<Eigen::Index>(c)] = kPointingSeed[c];
@@ -413,12 +428,12 @@ PointingResult NaoController::solve_pointing(const ArmBase& base, const Vector3d
     if (largest > 0.2) step *= 0.2 / largest;
     q = (q + step).cwiseMax(lo).cwiseMin(hi);
     for (size_t c = 0; c < kRightArm.size(); ++c) {
-      scratch_->qpos[nao_.qpos[static_cast<size_t>(kRightArm[c])]] = q[static_cast<Eigen::Index>(c)];
+      scratch_->data->qpos[nao_.qpos[static_cast<size_t>(kRightArm[c])]] = q[static_cast<Eigen::Index>(c)];
     }
   }
-  if (!stopped) fingertip = arm_chain_->fingertip(base_pos, base_quat, scratch_->qpos, nullptr);
+  if (!stopped) fingertip = arm_chain_->fingertip(base_pos, base_quat, scratch_->data->qpos, nullptr);
   *out = seed;
-  for (int k : kRightArm) (*out)[static_cast<size_t>(k)] = scratch_->qpos[nao_.qpos[static_cast<size_t>(k)]];
+  for (int k : kRightArm) (*out)[static_cast<size_t>(k)] = scratch_->data->qpos[nao_.qpos[static_cast<size_t>(k)]];
   PointingResult result;
   result.fingertip = fingertip;
   result.error_m = (target - fingertip).head<2>().norm();
@@ -489,7 +504,7 @@ void NaoController::set_hands(double left_opening, double right_opening) {
 }
 
 ArmReachDisc NaoController::arm_reach() const {
-  const Vector3d shoulder = Eigen::Map<const Vector3d>(stage_.data()->xpos + 3 * nao_.rshoulder_body);
+  const Vector3d shoulder = Eigen::Map<const Vector3d>(raw_data(stage_)->xpos + 3 * nao_.rshoulder_body);
   const double reach = stage_.model().config().arm_reach;
   ArmReachDisc disc;
   disc.centre = shoulder.head<2>();

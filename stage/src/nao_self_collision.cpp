@@ -1,8 +1,6 @@
 #include "freeplay/stage/nao_self_collision.hpp"
 
 #include <fmt/format.h>
-#include <mujoco/mujoco.h>
-
 #include <Eigen/Core>
 #include <algorithm>
 #include <array>
@@ -10,6 +8,7 @@
 
 #include "freeplay/stage/nao_description.hpp"
 #include "freeplay/stage/stage_state.hpp"
+#include "raw_mujoco.hpp"
 
 namespace freeplay::stage {
 
@@ -36,7 +35,7 @@ double penetration(const mjModel* m, const mjData* d, int g1, int g2) {
 
 NaoSelfCollision::NaoSelfCollision(const StageModel& model, double penetration_m)
     : model_(&model), penetration_m_(penetration_m) {
-  const mjModel* m = model.mj();
+  const mjModel* m = raw_model(model);
   const NaoIndex& nao = model.nao();
   std::vector<int> geoms;
   for (int g = 0; g < m->ngeom; ++g) {
@@ -69,11 +68,11 @@ NaoSelfCollision::NaoSelfCollision(const StageModel& model, double penetration_m
 }
 
 int NaoSelfCollision::update(const Stage& stage, bool& any) {
-  const mjModel* m = model_->mj();
+  const mjModel* m = raw_model(*model_);
   int onsets = 0;
   any = false;
   for (std::size_t i = 0; i < pairs_.size(); ++i) {
-    const bool now = penetration(m, stage.data(), pairs_[i].first, pairs_[i].second) < -penetration_m_;
+    const bool now = penetration(m, raw_data(stage), pairs_[i].first, pairs_[i].second) < -penetration_m_;
     if (now && !colliding_[i]) {
       ++onsets;
       const std::string a = geom_name(*model_, pairs_[i].first);

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "freeplay/core/error.hpp"
+#include "raw_mujoco.hpp"
 
 namespace freeplay::stage {
 namespace {
@@ -205,7 +206,7 @@ Renderer::Renderer(std::shared_ptr<const StageModel> model, RendererOptions opti
     throw InputError("renderer size out of range", "max_width/max_height", "1 to 8192 px");
   }
   impl_->stage_model = std::move(model);
-  impl_->model = mj_copyModel(nullptr, impl_->stage_model->mj());
+  impl_->model = mj_copyModel(nullptr, raw_model(*impl_->stage_model));
   mjModel* m = impl_->model;
   m->vis.global.offwidth = options.max_width;
   m->vis.global.offheight = options.max_height;
@@ -277,7 +278,7 @@ FramePack Renderer::render(const Stage& stage, std::string_view camera, const Re
                        "width/height", fmt::format("up to {}x{}", options_.max_width, options_.max_height));
     }
   }
-  frame.sandtray_T_camera_optical = camera_optical_pose(stage.model().mj(), stage.data(), spec.mj_camera_id);
+  frame.sandtray_T_camera_optical = camera_optical_pose(raw_model(stage.model()), raw_data(stage), spec.camera_id);
   frame.stamp = stage.time();
 
   impl_->gl->make_current();
@@ -292,9 +293,9 @@ FramePack Renderer::render(const Stage& stage, std::string_view camera, const Re
   mjvCamera cam;
   mjv_defaultCamera(&cam);
   cam.type = mjCAMERA_FIXED;
-  cam.fixedcamid = spec.mj_camera_id;
+  cam.fixedcamid = spec.camera_id;
   // mjv_updateScene only reads mjData; the API takes a non-const pointer.
-  mjv_updateScene(m, const_cast<mjData*>(stage.data()), &impl_->option, nullptr, &cam, mjCAT_ALL, &impl_->scene);
+  mjv_updateScene(m, const_cast<mjData*>(raw_data(stage)), &impl_->option, nullptr, &cam, mjCAT_ALL, &impl_->scene);
   const double near_m = static_cast<double>(m->vis.map.znear) * m->stat.extent;
   const double far_m = static_cast<double>(m->vis.map.zfar) * m->stat.extent;
 

@@ -7,6 +7,7 @@
 #include "freeplay/core/error.hpp"
 #include "freeplay/stage/avatar_controller.hpp"
 #include "freeplay/stage/nao_controller.hpp"
+#include "raw_mujoco.hpp"
 
 namespace freeplay::stage {
 namespace {
@@ -20,9 +21,10 @@ std::uint64_t next_screen_version() {
 
 }  // namespace
 
-Stage::Stage(std::shared_ptr<const StageModel> model, StageMode mode) : model_(std::move(model)), mode_(mode) {
-  const mjModel* m = model_->mj();
-  data_ = mj_makeData(m);
+Stage::Stage(std::shared_ptr<const StageModel> model, StageMode mode)
+    : model_(std::move(model)), mode_(mode), raw_(std::make_unique<Raw>()) {
+  const mjModel* m = raw_model(*model_);
+  raw_->data = mj_makeData(m);
   const int tex = model_->screen_texture();
   screen_rgb_ = cv::Mat(m->tex_height[tex], m->tex_width[tex], CV_8UC3, m->tex_rgb + m->tex_adr[tex]).clone();
   screen_version_ = next_screen_version();
@@ -39,7 +41,9 @@ Stage::Stage(std::shared_ptr<const StageModel> model, StageMode mode) : model_(s
   update_kinematics();
 }
 
-Stage::~Stage() { mj_deleteData(data_); }
+Stage::~Stage() = default;
+
+double Stage::time() const { return raw_->data->time; }
 
 void Stage::set_screen_image(const cv::Mat& bgr) {
   if (bgr.empty() || bgr.depth() != CV_8U || (bgr.channels() != 3 && bgr.channels() != 1)) {
@@ -53,32 +57,32 @@ void Stage::set_screen_image(const cv::Mat& bgr) {
 }
 
 void Stage::update_kinematics() {
-  mj_kinematics(model_->mj(), data_);
-  mj_camlight(model_->mj(), data_);
+  mj_kinematics(raw_model(*model_), raw_->data);
+  mj_camlight(raw_model(*model_), raw_->data);
 }
 
 void Stage::step(int steps) {
   if (mode_ != StageMode::dynamic) throw std::logic_error("Stage::step needs a stage made in dynamic mode");
   if (steps < 0) throw InputError("step count must not be negative", "steps", ">= 0");
-  const mjModel* m = model_->mj();
+  const mjModel* m = raw_model(*model_);
   held_qpos_.resize(avatar_qpos_.size());
-  for (size_t i = 0; i < avatar_qpos_.size(); ++i) held_qpos_[i] = data_->qpos[avatar_qpos_[i]];
+  for (size_t i = 0; i < avatar_qpos_.size(); ++i) held_qpos_[i] = raw_->data->qpos[avatar_qpos_[i]];
   for (int s = 0; s < steps; ++s) {
-    mj_step(m, data_);
+    mj_step(m, raw_->data);
     for (size_t i = 0; i < avatar_qpos_.size(); ++i) {
-      data_->qpos[avatar_qpos_[i]] = held_qpos_[i];
-      data_->qvel[avatar_dofs_[i]] = 0.0;
+      raw_->data->qpos[avatar_qpos_[i]] = held_qpos_[i];
+      raw_->data->qvel[avatar_dofs_[i]] = 0.0;
     }
   }
   update_kinematics();  // mj_step leaves poses one step behind the integrated joint angles
 }
 
 Eigen::Vector3d Stage::site_position(int site_id) const {
-  return Eigen::Map<const Eigen::Vector3d>(data_->site_xpos + 3 * site_id);
+  return Eigen::Map<const Eigen::Vector3d>(raw_->data->site_xpos + 3 * site_id);
 }
 
 Eigen::Isometry3d Stage::camera_pose(std::string_view camera_name) const {
-  return camera_optical_pose(model_->mj(), data_, model_->camera(camera_name).mj_camera_id);
+  return camera_optical_pose(raw_model(*model_), raw_->data, model_->camera(camera_name).camera_id);
 }
 
 }  // namespace freeplay::stage

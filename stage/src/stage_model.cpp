@@ -13,6 +13,7 @@
 #include "freeplay/core/error.hpp"
 #include "freeplay/core/sandtray_links.hpp"
 #include "freeplay/stage/camera_names.hpp"
+#include "raw_mujoco.hpp"
 
 namespace freeplay::stage {
 namespace {
@@ -296,7 +297,7 @@ ChildDimensions child_dimensions(double age_years) {
           lerp(a.hand_breadth, b.hand_breadth)};
 }
 
-mjModel* StageModel::load_mjcf_file(const std::filesystem::path& path) {
+mjModel* load_mjcf_file(const std::filesystem::path& path) {
   if (!std::filesystem::exists(path)) {
     throw std::runtime_error(fmt::format("MJCF file '{}' does not exist", path.string()));
   }
@@ -308,7 +309,7 @@ mjModel* StageModel::load_mjcf_file(const std::filesystem::path& path) {
   return model;
 }
 
-StageModel::StageModel(const StageConfig& config) : config_(config) {
+StageModel::StageModel(const StageConfig& config) : config_(config), raw_(std::make_unique<Raw>()) {
   child_dimensions(config.child_age_years);  // validates the age before any work
   if (config.cushion_height < 0.0 || config.cushion_height > 0.3) {
     throw InputError("cushion height out of range", "cushion_height", "0 to 0.3 m");
@@ -409,17 +410,12 @@ StageModel::StageModel(const StageConfig& config) : config_(config) {
       if (at != std::string::npos) mjcf_.erase(at, std::strlen(empty));
     }
   }
-  model_ = load_from_string(mjcf_);
-  try {
-    index_model();
-    if (nao_.present) place_nao();
-  } catch (...) {
-    mj_deleteModel(model_);
-    throw;
-  }
+  raw_->model = load_from_string(mjcf_);
+  index_model();
+  if (nao_.present) place_nao();
 }
 
-StageModel::~StageModel() { mj_deleteModel(model_); }
+StageModel::~StageModel() = default;
 
 std::shared_ptr<const StageModel> StageModel::create(const StageConfig& config) {
   return std::make_shared<const StageModel>(config);
@@ -435,7 +431,7 @@ const CameraSpec& StageModel::camera(std::string_view name) const {
 }
 
 void StageModel::index_model() {
-  const mjModel* m = model_;
+  const mjModel* m = raw_->model;
   auto add_camera = [&](std::string_view camera, const std::string& description, CameraIntrinsics color,
                         CameraIntrinsics depth, bool on_robot) {
     const std::string name(camera);
@@ -516,14 +512,14 @@ void StageModel::place_nao() {
   // The robot stands on the yellow side facing -y; its torso origin is `nao_table_gap` from the table edge in
   // StandInit. The soles' anchor is found by forward kinematics of StandInit with the soles flat on the floor.
   nao_.facing_yaw = -kPi / 2;
-  mjData* d = mj_makeData(model_);
+  mjData* d = mj_makeData(raw_->model);
   const NaoJointVector& q = posture_angles(NaoPosture::StandInit);
   for (int i = 0; i < kNaoJointCount; ++i) d->qpos[nao_.qpos[static_cast<size_t>(i)]] = q[static_cast<size_t>(i)];
   const int mocap = nao_.torso_mocap;
   d->mocap_pos[3 * mocap] = d->mocap_pos[3 * mocap + 1] = d->mocap_pos[3 * mocap + 2] = 0;
   d->mocap_quat[4 * mocap] = 1;
   d->mocap_quat[4 * mocap + 1] = d->mocap_quat[4 * mocap + 2] = d->mocap_quat[4 * mocap + 3] = 0;
-  mj_kinematics(model_, d);
+  mj_kinematics(raw_->model, d);
   const Vector3d l_sole = Eigen::Map<const Vector3d>(d->site_xpos + 3 * nao_.l_sole_site);
   const Vector3d r_sole = Eigen::Map<const Vector3d>(d->site_xpos + 3 * nao_.r_sole_site);
   const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> sole_r =
@@ -538,11 +534,11 @@ void StageModel::place_nao() {
                               torso_y - torso_world_offset.y(), SandtrayGeometry::floor_z);
 }
 
-Eigen::Isometry3d camera_optical_pose(const mjModel* m, const mjData* d, int mj_camera_id) {
+Eigen::Isometry3d camera_optical_pose(const mjModel* m, const mjData* d, int camera_id) {
   (void)m;
-  const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> r(d->cam_xmat + 9 * mj_camera_id);
+  const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> r(d->cam_xmat + 9 * camera_id);
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.translation() = Eigen::Map<const Vector3d>(d->cam_xpos + 3 * mj_camera_id);
+  pose.translation() = Eigen::Map<const Vector3d>(d->cam_xpos + 3 * camera_id);
   pose.linear().col(0) = r.col(0);
   pose.linear().col(1) = -r.col(1);
   pose.linear().col(2) = -r.col(2);

@@ -14,9 +14,9 @@
 
 #include "freeplay/core/error.hpp"
 #include "freeplay/core/rng.hpp"
-#include "freeplay/runner/run_folder.hpp"
 #include "freeplay/runner/suite.hpp"
 #include "freeplay/runner/suite_runner.hpp"
+#include "freeplay/results/run_folder.hpp"
 
 namespace {
 
@@ -32,7 +32,7 @@ runner::EpisodeOutput synthetic_episode(const runner::EpisodeTask& task, std::at
   out.record["wall_s"] = 0.001 * counter.fetch_add(1);  // differs between runs, like a clock
   out.record["metrics"]["robot_item_moves_per_min"] = rng.normal(2.0, 0.5);
   out.record["metrics"]["label_share"]["purple"]["cooperative"] = rng.uniform();
-  const auto id = runner::RunFolder::episode_file_id(task.variant->id, task.index);
+  const auto id = results::RunFolder::episode_file_id(task.variant->id, task.index);
   out.files["events/" + id + ".jsonl"] = fmt::format("{{\"t\":0,\"seed\":{}}}\n", task.seed);
   out.simulated_s = cap;
   return out;

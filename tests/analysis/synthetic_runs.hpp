@@ -10,8 +10,8 @@
 
 #include "freeplay/core/atomic_file.hpp"
 #include "freeplay/core/rng.hpp"
-#include "freeplay/runner/run_folder.hpp"
 #include "freeplay/runner/suite_runner.hpp"
+#include "freeplay/results/run_folder.hpp"
 
 namespace freeplay::analysis::testing {
 
@@ -38,7 +38,7 @@ inline nlohmann::json synthetic_record(const SyntheticVariant& v, int index) {
   r["condition"] = "child-robot";
   r["policy"] = v.policy;
   r["episode"] = index;
-  r["episode_id"] = runner::RunFolder::episode_file_id(v.id, index);
+  r["episode_id"] = results::RunFolder::episode_file_id(v.id, index);
   r["seed"] = seed;
   r["config_hash"] = v.config_hash;
   r["program_version"] = "test";

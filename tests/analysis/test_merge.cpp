@@ -46,7 +46,7 @@ runner::EpisodeOutput fake_episode(const runner::EpisodeTask& task, int invocati
   out.record["wall_s"] = 0.001 * (invocation * 1000 + task.index);
   out.record["metrics"]["robot_item_moves_per_min"] = rng.normal(2.0, 0.5);
   out.record["metrics"]["label_share"]["purple"]["cooperative"] = rng.uniform();
-  const auto id = runner::RunFolder::episode_file_id(task.variant->id, task.index);
+  const auto id = results::RunFolder::episode_file_id(task.variant->id, task.index);
   out.files["events/" + id + ".jsonl"] = "{\"t\":0,\"event\":\"start\",\"seed\":" + std::to_string(task.seed) + "}\n";
   out.files["annotations/" + id + ".yaml"] = "episode: " + std::to_string(task.index) + "\n";
   out.simulated_s = 1000.0;
@@ -72,7 +72,7 @@ void run_shard(const runner::Suite& suite, const fs::path& dir, int index, int c
   manifest["overrides"] = overrides;
   manifest["shard"] = {index + 1, count};
   for (const auto& v : suite.variants) manifest["variants"].push_back({{"id", v.id}, {"episodes", v.scenario.episodes}});
-  std::ofstream(dir / kRunManifestFile) << manifest.dump(2) << "\n";
+  std::ofstream(dir / results::kRunManifestFile) << manifest.dump(2) << "\n";
 }
 
 std::string read(const fs::path& path) {
@@ -85,7 +85,7 @@ std::string without_wall_clock(const std::string& jsonl) {
 }
 
 std::string merge_error(const std::vector<fs::path>& inputs, const fs::path& out,
-                        const std::optional<ExpectedRun>& expected = std::nullopt) {
+                        const std::optional<results::ExpectedRun>& expected = std::nullopt) {
   const bool existed = fs::exists(out);
   try {
     merge_runs(inputs, out, expected);
@@ -134,7 +134,7 @@ TEST_F(Merge, ShardsMergeIntoTheSingleMachineRun) {
     const auto relative = fs::relative(entry.path(), root / "whole");
     EXPECT_EQ(read(entry.path()), read(root / "merged" / relative)) << relative;
   }
-  const auto manifest = nlohmann::json::parse(read(root / "merged" / kRunManifestFile));
+  const auto manifest = nlohmann::json::parse(read(root / "merged" / results::kRunManifestFile));
   EXPECT_EQ(manifest["shard"], nlohmann::json::array({1, 1}));
   EXPECT_EQ(manifest["merged_from"].size(), 3u);
 }
@@ -142,7 +142,7 @@ TEST_F(Merge, ShardsMergeIntoTheSingleMachineRun) {
 TEST_F(Merge, ShardsAreBalancedAndDisjoint) {
   int total = 0;
   for (int i = 0; i < 3; ++i) {
-    const int n = static_cast<int>(runner::RunFolder(shard(i)).records().size());
+    const int n = static_cast<int>(results::RunFolder(shard(i)).records().size());
     EXPECT_GE(n, 5);
     EXPECT_LE(n, 7);
     total += n;
@@ -164,13 +164,13 @@ TEST_F(Merge, RefusesTheSameShardTwice) {
 TEST_F(Merge, RefusesDuplicateEpisodes) {
   // The same episode in two folders whose run.json do not reveal it (a re-run into another folder).
   run_shard(suite, root / "rerun", 1, 3, 9);
-  auto manifest = nlohmann::json::parse(read(root / "rerun" / kRunManifestFile));
+  auto manifest = nlohmann::json::parse(read(root / "rerun" / results::kRunManifestFile));
   manifest.erase("shard");
-  std::ofstream(root / "rerun" / kRunManifestFile) << manifest.dump();
+  std::ofstream(root / "rerun" / results::kRunManifestFile) << manifest.dump();
   for (int i = 0; i < 3; ++i) {
-    auto m = nlohmann::json::parse(read(shard(i) / kRunManifestFile));
+    auto m = nlohmann::json::parse(read(shard(i) / results::kRunManifestFile));
     m.erase("shard");
-    std::ofstream(shard(i) / kRunManifestFile) << m.dump();
+    std::ofstream(shard(i) / results::kRunManifestFile) << m.dump();
   }
   const auto message = merge_error({shard(0), shard(1), shard(2), root / "rerun"}, root / "merged");
   EXPECT_NE(message.find("appear twice"), std::string::npos) << message;
@@ -190,15 +190,15 @@ TEST_F(Merge, RefusesConfigurationMismatch) {
   const auto message = merge_error({shard(0), shard(1), shard(2)}, root / "merged");
   EXPECT_NE(message.find("ran two configurations"), std::string::npos) << message;
   // Against the suite itself, the hash is checked directly.
-  const auto against_suite = merge_error({shard(0), shard(1), shard(2)}, root / "merged", expected_from_suite(suite));
+  const auto against_suite = merge_error({shard(0), shard(1), shard(2)}, root / "merged", runner::expected_run(suite));
   EXPECT_NE(against_suite.find("the suite's is"), std::string::npos) << against_suite;
 }
 
 TEST_F(Merge, WithoutRunJsonTheSuiteIsNeeded) {
-  for (int i = 0; i < 3; ++i) fs::remove(shard(i) / kRunManifestFile);
+  for (int i = 0; i < 3; ++i) fs::remove(shard(i) / results::kRunManifestFile);
   const auto message = merge_error({shard(0), shard(1), shard(2)}, root / "merged");
   EXPECT_NE(message.find("--suite"), std::string::npos) << message;
-  merge_runs({shard(0), shard(1), shard(2)}, root / "merged", expected_from_suite(suite));
+  merge_runs({shard(0), shard(1), shard(2)}, root / "merged", runner::expected_run(suite));
   EXPECT_EQ(read(root / "whole" / "summary.csv"), read(root / "merged" / "summary.csv"));
   EXPECT_EQ(without_wall_clock(read(root / "whole" / "episodes.jsonl")),
             without_wall_clock(read(root / "merged" / "episodes.jsonl")));

@@ -6,8 +6,8 @@
 
 #include "freeplay/core/atomic_file.hpp"
 #include "freeplay/runner/episode.hpp"
-#include "freeplay/runner/run_folder.hpp"
 #include "freeplay/runner/suite_runner.hpp"
+#include "freeplay/results/run_folder.hpp"
 
 using namespace freeplay;
 using namespace freeplay::runner;
@@ -105,7 +105,7 @@ TEST(Episode, OneAndTwoWorkersGiveIdenticalRunFolders) {
   // episodes.jsonl differs only in the measured wall and planning times.
   auto strip = [](const std::filesystem::path& p) {
     std::string out;
-    for (const auto& r : RunFolder(p).records()) {
+    for (const auto& r : results::RunFolder(p).records()) {
       auto copy = r;
       copy.erase("wall_s");
       copy.erase("timing");

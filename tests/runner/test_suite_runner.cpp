@@ -7,8 +7,8 @@
 #include "freeplay/core/atomic_file.hpp"
 #include "freeplay/core/error.hpp"
 #include "freeplay/core/rng.hpp"
-#include "freeplay/runner/run_folder.hpp"
 #include "freeplay/runner/suite_runner.hpp"
+#include "freeplay/results/run_folder.hpp"
 
 using namespace freeplay;
 using namespace freeplay::runner;
@@ -35,7 +35,7 @@ EpisodeOutput fake_episode(const EpisodeTask& task, const std::atomic<bool>& /*s
   Rng rng(task.seed);
   out.record["duration_s"] = rng.uniform(60, 2400);
   out.record["metrics"] = nlohmann::json{{"x", rng.uniform()}};
-  out.files["events/" + RunFolder::episode_file_id(task.variant->id, task.index) + ".jsonl"] = "{}\n";
+  out.files["events/" + results::RunFolder::episode_file_id(task.variant->id, task.index) + ".jsonl"] = "{}\n";
   out.simulated_s = 100;
   return out;
 }
@@ -153,7 +153,7 @@ TEST(SuiteRunner, RunFolderStreamsItsRecords) {
   const auto suite = two_variant_suite(dir);
   std::atomic<bool> stop{false};
   run_suite(suite, options(2, dir / "run"), fake_episode, stop);
-  const RunFolder folder(dir / "run");
+  const results::RunFolder folder(dir / "run");
   std::vector<nlohmann::json> seen;
   folder.for_each_record([&](const nlohmann::json& r) { seen.push_back(r); });
   EXPECT_EQ(folder.record_count(), 12u);

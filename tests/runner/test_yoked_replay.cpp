@@ -12,9 +12,9 @@
 #include "freeplay/core/error.hpp"
 #include "freeplay/policies/play_policy.hpp"
 #include "freeplay/runner/episode.hpp"
-#include "freeplay/runner/run_folder.hpp"
 #include "freeplay/runner/suite.hpp"
 #include "freeplay/runner/suite_runner.hpp"
+#include "freeplay/results/run_folder.hpp"
 
 using namespace freeplay;
 using namespace freeplay::runner;
@@ -83,7 +83,8 @@ std::vector<std::string> robot_actions(const fs::path& log, double until) {
 /// The free-play duration of each episode of a run folder, by index.
 std::vector<double> durations(const fs::path& dir) {
   std::vector<double> out(kEpisodes, 0.0);
-  for (const auto& r : RunFolder(dir).records()) out[r["episode"].get<std::size_t>()] = r["duration_s"].get<double>();
+  for (const auto& r : results::RunFolder(dir).records())
+    out[r["episode"].get<std::size_t>()] = r["duration_s"].get<double>();
   return out;
 }
 

@@ -6,6 +6,7 @@
 
 #include "freeplay/core/error.hpp"
 #include "freeplay/stage/avatar_controller.hpp"
+#include "raw_mujoco.hpp"
 
 namespace freeplay::stage {
 namespace {
@@ -50,7 +51,7 @@ TEST(Avatar, HeadTurnsToLookAtATarget) {
     EXPECT_FALSE(gaze.clamped);
     stage.update_kinematics();
     const Eigen::Vector3d eye = stage.site_position(eyes);
-    const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> frame(stage.data()->site_xmat + 9 * eyes);
+    const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> frame(raw_data(stage)->site_xmat + 9 * eyes);
     EXPECT_GT(frame.col(0).dot((target - eye).normalized()), std::cos(2.0 * M_PI / 180.0)) << target.transpose();
   }
   const GazeResult behind = purple.look_at(Eigen::Vector3d(0.3, -2.0, 0.5));
@@ -76,9 +77,10 @@ TEST(Avatar, DynamicsLeaveAvatarsWhereTheControllerPutThem) {
   Stage stage(StageModel::create(config), StageMode::dynamic);
   AvatarController purple(stage, ChildRole::purple);
   purple.touch({0.3, -0.25});
-  const std::vector<double> before(stage.data()->qpos, stage.data()->qpos + stage.model().mj()->nq);
+  const std::vector<double> before(raw_data(stage)->qpos, raw_data(stage)->qpos + raw_model(stage.model())->nq);
   stage.step(50);
-  for (int address : stage.avatar_qpos()) EXPECT_EQ(stage.data()->qpos[address], before[static_cast<size_t>(address)]);
+  for (int address : stage.avatar_qpos())
+    EXPECT_EQ(raw_data(stage)->qpos[address], before[static_cast<size_t>(address)]);
 }
 
 }  // namespace

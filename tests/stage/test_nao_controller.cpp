@@ -6,6 +6,7 @@
 
 #include "freeplay/core/error.hpp"
 #include "freeplay/stage/nao_controller.hpp"
+#include "raw_mujoco.hpp"
 
 namespace freeplay::stage {
 namespace {
@@ -20,11 +21,11 @@ std::shared_ptr<const StageModel> robot_model() {
 }
 
 void expect_within_joint_limits(const Stage& stage, double tolerance) {
-  const mjModel* m = stage.model().mj();
+  const mjModel* m = raw_model(stage.model());
   const NaoIndex& nao = stage.model().nao();
   for (int i = 0; i < kNaoJointCount; ++i) {
     const int joint = nao.joint[static_cast<size_t>(i)];
-    const double q = stage.data()->qpos[nao.qpos[static_cast<size_t>(i)]];
+    const double q = raw_data(stage)->qpos[nao.qpos[static_cast<size_t>(i)]];
     EXPECT_GE(q, m->jnt_range[2 * joint] - tolerance) << kNaoJointNames[static_cast<size_t>(i)];
     EXPECT_LE(q, m->jnt_range[2 * joint + 1] + tolerance) << kNaoJointNames[static_cast<size_t>(i)];
   }
@@ -83,7 +84,7 @@ TEST(NaoController, ArmReachDiscUsesTheShoulderHeight) {
   NaoController nao(stage);
   const ArmReachDisc disc = nao.arm_reach();
   const Eigen::Vector3d shoulder =
-      Eigen::Map<const Eigen::Vector3d>(stage.data()->xpos + 3 * stage.model().nao().rshoulder_body);
+      Eigen::Map<const Eigen::Vector3d>(raw_data(stage)->xpos + 3 * stage.model().nao().rshoulder_body);
   EXPECT_FALSE(disc.too_high);
   EXPECT_NEAR(disc.radius, std::sqrt(0.25 - shoulder.z() * shoulder.z()), 1e-12);
   EXPECT_TRUE(disc.centre.isApprox(shoulder.head<2>()));
@@ -99,7 +100,7 @@ TEST(NaoController, LooksAtThePurpleChildAcrossTheTable) {
   stage.update_kinematics();
   // the head's forward ray from the gaze point (CameraTop's position; the camera itself tilts 1.2° lower)
   const int gaze_site = stage.model().nao().gaze_site;
-  const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> head(stage.data()->site_xmat + 9 * gaze_site);
+  const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> head(raw_data(stage)->site_xmat + 9 * gaze_site);
   const Eigen::Vector3d to_target = (target - stage.site_position(gaze_site)).normalized();
   EXPECT_GT(head.col(0).dot(to_target), std::cos(0.5 * M_PI / 180.0));
 }
@@ -112,7 +113,8 @@ TEST(NaoController, HeadPitchIsClampedByTheYawDependentLimits) {
   EXPECT_TRUE(centre.clamped);
   EXPECT_NEAR(centre.pitch, head_pitch_range(centre.yaw).max, 1e-12);
   // far to the robot's left and far below: needs more pitch than allowed at that yaw
-  const Eigen::Vector3d neck = Eigen::Map<const Eigen::Vector3d>(stage.data()->xpos + 3 * stage.model().nao().neck_body);
+  const Eigen::Vector3d neck =
+      Eigen::Map<const Eigen::Vector3d>(raw_data(stage)->xpos + 3 * stage.model().nao().neck_body);
   const GazeResult gaze = nao.look_at(neck + Eigen::Vector3d(0.3, -0.3, -0.6));
   EXPECT_TRUE(gaze.clamped);
   EXPECT_NEAR(gaze.pitch, head_pitch_range(gaze.yaw).max, 1e-12);
@@ -144,8 +146,8 @@ TEST(NaoControllerDynamic, ArmTracksAPointingTrajectoryWithinBounds) {
   const int fingertip = stage.model().nao().fingertip_site;
   double worst_moving = 0.0;
   constexpr double kControlPeriod = 0.01;  // 100 Hz targets, physics at 2 ms
-  const int steps_per_tick = static_cast<int>(std::lround(kControlPeriod / stage.model().mj()->opt.timestep));
-  ASSERT_LE(stage.model().mj()->opt.timestep, 0.002);
+  const int steps_per_tick = static_cast<int>(std::lround(kControlPeriod / raw_model(stage.model())->opt.timestep));
+  ASSERT_LE(raw_model(stage.model())->opt.timestep, 0.002);
   while (stage.time() < 3.0 - 1e-9) {
     nao.update(stage.time() + kControlPeriod);
     stage.step(steps_per_tick);
@@ -189,12 +191,12 @@ TEST(NaoController, HandsOpenAndCloseWithinZeroToOne) {
   stage.update_kinematics();
   EXPECT_TRUE(stage.site_position(tip).isApprox(tip_before));  // the pointing fingertip does not depend on the hand
   // closing curls the finger geoms down towards the palm
-  const mjModel* m = stage.model().mj();
+  const mjModel* m = raw_model(stage.model());
   const int finger = mj_name2id(m, mjOBJ_GEOM, "r_finger1");
-  const double closed_z = stage.data()->geom_xpos[3 * finger + 2];
+  const double closed_z = raw_data(stage)->geom_xpos[3 * finger + 2];
   nao.set_hands(1.0, 1.0);
   stage.update_kinematics();
-  EXPECT_GT(stage.data()->geom_xpos[3 * finger + 2], closed_z);
+  EXPECT_GT(raw_data(stage)->geom_xpos[3 * finger + 2], closed_z);
 }
 
 TEST(NaoController, NeedsARobotInTheScene) {

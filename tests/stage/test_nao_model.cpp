@@ -10,6 +10,7 @@
 #include "freeplay/core/error.hpp"
 #include "freeplay/stage/nao_controller.hpp"
 #include "freeplay/stage/stage.hpp"
+#include "raw_mujoco.hpp"
 
 namespace freeplay::stage {
 namespace {
@@ -23,7 +24,7 @@ struct DataDeleter {
 using ModelPtr = std::unique_ptr<mjModel, ModelDeleter>;
 using DataPtr = std::unique_ptr<mjData, DataDeleter>;
 
-ModelPtr load_nao() { return ModelPtr(StageModel::load_mjcf_file(assets_dir() / "nao" / "nao.xml")); }
+ModelPtr load_nao() { return ModelPtr(load_mjcf_file(assets_dir() / "nao" / "nao.xml")); }
 
 Eigen::Vector3d site(const mjModel* m, const mjData* d, const char* name) {
   const int id = mj_name2id(m, mjOBJ_SITE, name);
@@ -111,7 +112,7 @@ TEST(NaoModel, PosturesLoadOnTheStageWithTheSolesOnTheFloor) {
   Stage stage(StageModel::create(config));
   NaoController nao(stage);
   const NaoIndex& index = stage.model().nao();
-  const mjModel* m = stage.model().mj();
+  const mjModel* m = raw_model(stage.model());
   for (NaoPosture posture : kAllNaoPostures) {
     nao.go_to_posture(posture);
     stage.update_kinematics();
@@ -134,13 +135,13 @@ TEST(NaoModel, StandInitGeometryMatchesTheReferenceTable) {
   const NaoIndex& nao = stage.model().nao();
   const double floor = SandtrayGeometry::floor_z;
   // §1.9 world geometry of StandInit: torso origin 0.320 m, CameraTop 0.504 m, tilt 6.9° down.
-  EXPECT_NEAR(stage.data()->xpos[3 * nao.torso_body + 2] - floor, 0.320, 0.005);
+  EXPECT_NEAR(raw_data(stage)->xpos[3 * nao.torso_body + 2] - floor, 0.320, 0.005);
   const Eigen::Isometry3d top = stage.camera_pose("CameraTop");
   EXPECT_NEAR(top.translation().z() - floor, 0.504, 0.005);
   const double tilt_down = std::asin(-top.linear().col(2).z()) * 180.0 / M_PI;
   EXPECT_NEAR(tilt_down, 6.9, 0.5);
   // standing on the yellow side, facing the screen (-y)
-  EXPECT_GT(stage.data()->xpos[3 * nao.torso_body + 1], SandtrayGeometry::bezel_max_y);
+  EXPECT_GT(raw_data(stage)->xpos[3 * nao.torso_body + 1], SandtrayGeometry::bezel_max_y);
   EXPECT_LT(top.linear().col(2).y(), -0.9);
 }
 

@@ -10,6 +10,7 @@
 #include "freeplay/core/error.hpp"
 #include "freeplay/stage/avatar_controller.hpp"
 #include "freeplay/stage/renderer.hpp"
+#include "raw_mujoco.hpp"
 
 // Mesa keeps a few small allocations of its GL contexts until exit (OSMesaMakeCurrent, EGL drivers): not ours.
 extern "C" const char* __lsan_default_suppressions() {
@@ -67,7 +68,7 @@ TEST_F(RenderTest, PurpleBibAppearsInCameraPurpleWhereTheGeometrySays) {
   Stage stage(model_);
   const FramePack frame = renderer_->render(stage, "camera_purple");
   const int bib = model_->avatar(ChildRole::purple).bib_geom;
-  const Eigen::Vector3d centre = Eigen::Map<const Eigen::Vector3d>(stage.data()->geom_xpos + 3 * bib);
+  const Eigen::Vector3d centre = Eigen::Map<const Eigen::Vector3d>(raw_data(stage)->geom_xpos + 3 * bib);
   // the upper chest (above the resting hands), stepped from the bib's centre towards the camera
   const Eigen::Vector3d towards = (frame.sandtray_T_camera_optical.translation() - centre).normalized();
   const Eigen::Vector2d pixel = project(frame, centre + 0.09 * Eigen::Vector3d::UnitZ() + 0.05 * towards, frame.K);
@@ -81,7 +82,7 @@ TEST_F(RenderTest, PurpleBibAppearsInCameraPurpleWhereTheGeometrySays) {
   // and the yellow bib is in camera_yellow
   const FramePack yellow = renderer_->render(stage, "camera_yellow");
   const int yellow_bib = model_->avatar(ChildRole::yellow).bib_geom;
-  const Eigen::Vector3d yellow_centre = Eigen::Map<const Eigen::Vector3d>(stage.data()->geom_xpos + 3 * yellow_bib);
+  const Eigen::Vector3d yellow_centre = Eigen::Map<const Eigen::Vector3d>(raw_data(stage)->geom_xpos + 3 * yellow_bib);
   const Eigen::Vector3d yellow_towards = (yellow.sandtray_T_camera_optical.translation() - yellow_centre).normalized();
   const cv::Vec3d yellow_colour = mean_colour(yellow.rgb, project(yellow, yellow_centre + 0.09 * Eigen::Vector3d::UnitZ() + 0.05 * yellow_towards, yellow.K), 4);
   EXPECT_GT(yellow_colour[0], yellow_colour[2] + 60) << yellow_colour;

@@ -7,6 +7,7 @@
 #include "freeplay/core/error.hpp"
 #include "freeplay/stage/camera_names.hpp"
 #include "freeplay/stage/stage.hpp"
+#include "raw_mujoco.hpp"
 
 namespace freeplay::stage {
 namespace {
@@ -141,8 +142,8 @@ TEST(StageModel, OlderChildrenSitTaller) {
   const Stage old(StageModel::create(config));
   // the neck pivot sits 4 cm above the acromion; both children lean by the same rest angle
   auto neck_height = [](const Stage& stage) {
-    const int head = stage.model().mj()->site_bodyid[stage.model().avatar(ChildRole::purple).eyes_site];
-    return stage.data()->xpos[3 * head + 2];
+    const int head = raw_model(stage.model())->site_bodyid[stage.model().avatar(ChildRole::purple).eyes_site];
+    return raw_data(stage)->xpos[3 * head + 2];
   };
   EXPECT_NEAR(neck_height(old) - neck_height(young), std::cos(0.1) * (0.432 - 0.356), 0.002);
 }

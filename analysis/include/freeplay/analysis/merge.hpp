@@ -8,28 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "freeplay/runner/suite.hpp"
+#include "freeplay/results/run_folder.hpp"
 
 namespace freeplay::analysis {
-
-/// The manifest each run folder carries (suite, variants and their episode counts, shard, overrides).
-inline constexpr const char* kRunManifestFile = "run.json";
-
-/// One variant a merged run must hold.
-struct ExpectedVariant {
-  std::string id;                            ///< suite variant id
-  int episodes = 0;                          ///< episodes 0 … episodes − 1
-  std::optional<std::uint64_t> config_hash;  ///< required configuration hash, when known
-};
-
-/// The episodes a merged run must hold, in suite order, and the heading of its summary.
-struct ExpectedRun {
-  std::string title;                     ///< heading of summary.md (the suite name by default)
-  std::vector<ExpectedVariant> variants; ///< in suite order
-};
-
-/// The expected episodes of a loaded suite (with configuration hashes); `title` defaults to the suite name.
-ExpectedRun expected_from_suite(const runner::Suite& suite, const std::string& title = {});
 
 /// What a merge did.
 struct MergeReport {
@@ -47,6 +28,6 @@ struct MergeReport {
 /// suites or overrides, the same shard twice, a duplicate, missing or unknown episode, a configuration-hash
 /// mismatch, or a per-episode file that differs between inputs.
 MergeReport merge_runs(const std::vector<std::filesystem::path>& inputs, const std::filesystem::path& out,
-                       const std::optional<ExpectedRun>& expected = std::nullopt);
+                       const std::optional<results::ExpectedRun>& expected = std::nullopt);
 
 }  // namespace freeplay::analysis

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "freeplay/runner/suite.hpp"
+#include "freeplay/results/run_folder.hpp"
 
 namespace freeplay::runner {
 
@@ -81,9 +82,7 @@ void check_policies(const Suite& suite);
 RunReport run_suite(const Suite& suite, const RunOptions& options, const EpisodeFunction& run_episode,
                     std::atomic<bool>& stop);
 
-/// Writes summary.csv and summary.md of the run folder's finished episodes (bootstraps on `threads` threads);
-/// returns the Markdown.
-std::string write_summaries(const std::filesystem::path& dir, const Suite& suite, const std::string& title,
-                            int threads = 1);
+/// The episodes a run of `suite` must hold (with configuration hashes); `title` defaults to the suite name.
+results::ExpectedRun expected_run(const Suite& suite, const std::string& title = {});
 
 }  // namespace freeplay::runner

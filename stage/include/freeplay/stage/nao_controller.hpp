@@ -1,8 +1,6 @@
 #pragma once
 // NAO control on the stage: postures, gaze with NAOqi's head limits, pointing by inverse kinematics.
 
-#include <mujoco/mujoco.h>
-
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <memory>
@@ -100,9 +98,9 @@ class NaoController {
   Stage& stage_;
   const NaoIndex& nao_;
   NaoJointVector targets_{};
-  mjData* scratch_ = nullptr;
+  struct Scratch;                              // a MuJoCo state for trial poses and gravity (nao_controller.cpp)
+  std::unique_ptr<Scratch> scratch_;
   std::shared_ptr<class ArmChain> arm_chain_;  // the right arm's kinematic chain (pointing IK)
-  std::vector<mjtNum> gravity_;
   std::vector<TimedScreenPoint> path_;
 };
 

@@ -1,8 +1,6 @@
 #pragma once
 // The mutable 3-D stage of one episode: MuJoCo state, the live screen image, kinematic or dynamic stepping.
 
-#include <mujoco/mujoco.h>
-
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <memory>
@@ -28,14 +26,10 @@ class Stage {
   const StageModel& model() const { return *model_; }
   /// The shared model pointer (for renderers and controllers).
   const std::shared_ptr<const StageModel>& shared_model() const { return model_; }
-  /// MuJoCo state (read-only).
-  const mjData* data() const { return data_; }
-  /// MuJoCo state (for controllers).
-  mjData* data() { return data_; }
   /// Kinematic or dynamic.
   StageMode mode() const { return mode_; }
   /// Simulated time (s).
-  double time() const { return data_->time; }
+  double time() const;
 
   /// Replaces the sandtray screen picture (BGR or grey, any size; resampled to the texture size).
   void set_screen_image(const cv::Mat& bgr);
@@ -58,9 +52,12 @@ class Stage {
   const std::vector<int>& avatar_qpos() const { return avatar_qpos_; }
 
  private:
+  friend struct RawMujoco;   // stage/src/raw_mujoco.hpp: the raw state, for stage/'s sources only
+  struct Raw;                // the MuJoCo state (stage/src/raw_mujoco.hpp)
+
   std::shared_ptr<const StageModel> model_;
   StageMode mode_;
-  mjData* data_ = nullptr;
+  std::unique_ptr<Raw> raw_;
   cv::Mat screen_rgb_;
   std::uint64_t screen_version_ = 0;
   std::vector<int> avatar_qpos_;

@@ -1,8 +1,6 @@
 #pragma once
 // The immutable 3-D stage: MuJoCo model of the sandtray table, the NAO, the child avatars and the cameras.
 
-#include <mujoco/mujoco.h>
-
 #include <Eigen/Geometry>
 #include <array>
 #include <filesystem>
@@ -57,7 +55,7 @@ struct CameraIntrinsics {
 struct CameraSpec {
   std::string name;            ///< e.g. "camera_purple"
   std::string description;     ///< what the real sensor is
-  int mj_camera_id = -1;       ///< index into mjModel cameras
+  int camera_id = -1;          ///< index into the MuJoCo model's cameras
   CameraIntrinsics color;      ///< colour stream
   CameraIntrinsics depth;      ///< depth stream (equal to `color` where the sensor has no separate depth)
   bool on_robot = false;       ///< true for the NAO's head cameras (moves with the robot)
@@ -135,7 +133,7 @@ struct NaoIndex {
   double facing_yaw = 0;                         ///< heading of the robot's x axis in the sandtray frame
 };
 
-/// Owns an mjModel; loaded once, read-only afterwards and shareable across threads.
+/// Owns the MuJoCo model of the stage; loaded once, read-only afterwards and shareable across threads.
 class StageModel {
  public:
   /// Builds the scene for `config`; throws InputError for bad values, std::runtime_error with MuJoCo's
@@ -148,8 +146,6 @@ class StageModel {
   /// Convenience: a shared, immutable model.
   static std::shared_ptr<const StageModel> create(const StageConfig& config);
 
-  /// The MuJoCo model (read-only).
-  const mjModel* mj() const { return model_; }
   /// The configuration it was built from.
   const StageConfig& config() const { return config_; }
   /// The assembled MJCF text.
@@ -170,24 +166,21 @@ class StageModel {
   /// MuJoCo geom id of the sandtray screen.
   int screen_geom() const { return screen_geom_; }
 
-  /// Loads a standalone MJCF file; throws std::runtime_error with the path and MuJoCo's message.
-  static mjModel* load_mjcf_file(const std::filesystem::path& path);
-
  private:
+  friend struct RawMujoco;   // stage/src/raw_mujoco.hpp: the raw model, for stage/'s sources only
+  struct Raw;                // the MuJoCo model (stage/src/raw_mujoco.hpp)
+
   void index_model();
   void place_nao();
 
   StageConfig config_;
   std::string mjcf_;
-  mjModel* model_ = nullptr;
+  std::unique_ptr<Raw> raw_;
   std::vector<CameraSpec> cameras_;
   NaoIndex nao_;
   std::array<AvatarIndex, 2> avatars_;
   int screen_texture_ = -1;
   int screen_geom_ = -1;
 };
-
-/// The sandtray pose of a MuJoCo camera's optical frame (x right, y down, z forward) from mjData.
-Eigen::Isometry3d camera_optical_pose(const mjModel* m, const mjData* d, int mj_camera_id);
 
 }  // namespace freeplay::stage

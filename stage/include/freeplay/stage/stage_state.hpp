@@ -1,6 +1,6 @@
 #pragma once
 // Typed reads (and the one write) of the stage's MuJoCo model and state, so code outside stage/ never touches
-// mjModel or mjData: joint coordinates, body poses and names, joint limits, the engine's version.
+// MuJoCo's raw model or state: joint coordinates, body poses and names, joint limits, the engine's version.
 
 #include <Eigen/Geometry>
 #include <cstdint>

@@ -1,4 +1,4 @@
-#include "freeplay/runner/run_folder.hpp"
+#include "freeplay/results/run_folder.hpp"
 
 #include <fcntl.h>
 #include <fmt/chrono.h>
@@ -17,7 +17,7 @@
 #include "freeplay/core/atomic_file.hpp"
 #include "freeplay/core/error.hpp"
 
-namespace freeplay::runner {
+namespace freeplay::results {
 
 namespace {
 constexpr const char* kEpisodesFile = "episodes.jsonl";
@@ -193,4 +193,4 @@ std::string gzip_compress(std::string_view contents) {
   return out;
 }
 
-}  // namespace freeplay::runner
+}  // namespace freeplay::results

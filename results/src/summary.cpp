@@ -1,4 +1,4 @@
-#include "freeplay/runner/summary.hpp"
+#include "freeplay/results/summary.hpp"
 
 #include <fmt/format.h>
 
@@ -6,10 +6,12 @@
 #include <cmath>
 #include <future>
 
+#include "freeplay/agents/condition.hpp"
 #include "freeplay/core/task_pool.hpp"
-#include "freeplay/runner/scenario.hpp"
 
-namespace freeplay::runner {
+namespace freeplay::results {
+
+using agents::Condition;
 
 const PinsoroDurations* pinsoro_durations(const std::string& condition) {
   static const PinsoroDurations child_child{45, 24.15, 11.25, 22.4, 0.89, 0.56, 0.38};
@@ -219,4 +221,4 @@ std::string summary_markdown(const std::vector<VariantSummary>& summaries, const
   return out;
 }
 
-}  // namespace freeplay::runner
+}  // namespace freeplay::results

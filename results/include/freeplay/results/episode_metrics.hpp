@@ -11,11 +11,7 @@
 #include "freeplay/core/event_log.hpp"
 #include "freeplay/core/geometry.hpp"
 
-namespace freeplay::sim {
-class Sandtray;
-}
-
-namespace freeplay::runner {
+namespace freeplay::results {
 
 /// What the metrics read from the world at the tick being fed: item positions and the colour zone under a point.
 class MetricsWorld {
@@ -25,18 +21,6 @@ class MetricsWorld {
   virtual Vec2 item_position(const std::string& item) const = 0;
   /// The colour of the zone under `p` (sandtray frame, m), "" when none.
   virtual std::string zone_at(const Vec2& p) const = 0;
-};
-
-/// The live sandtray as the metrics' world.
-class SandtrayMetricsWorld final : public MetricsWorld {
- public:
-  /// Reads `tray` (not owned) when asked.
-  explicit SandtrayMetricsWorld(const sim::Sandtray& tray) : tray_(tray) {}
-  Vec2 item_position(const std::string& item) const override;
-  std::string zone_at(const Vec2& p) const override;
-
- private:
-  const sim::Sandtray& tray_;
 };
 
 /// Accumulates an episode's metrics from its events in emission order and its free-play ticks' gaze.
@@ -108,4 +92,4 @@ class EpisodeMetrics {
   double sync_max_mm_ = 0.0;
 };
 
-}  // namespace freeplay::runner
+}  // namespace freeplay::results

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <map>
 
-#include "freeplay/runner/episode_metrics.hpp"
+#include "freeplay/results/episode_metrics.hpp"
 
-namespace freeplay::runner {
+namespace freeplay::results {
 namespace {
 
 /// Items at set positions; one zone "blue" for x < 0.5.
@@ -120,4 +120,4 @@ TEST(EpisodeMetrics, ObserveNewFeedsEachLogEntryOnce) {
 }
 
 }  // namespace
-}  // namespace freeplay::runner
+}  // namespace freeplay::results

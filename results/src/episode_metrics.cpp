@@ -1,4 +1,4 @@
-#include "freeplay/runner/episode_metrics.hpp"
+#include "freeplay/results/episode_metrics.hpp"
 
 #include <cmath>
 
@@ -6,7 +6,7 @@
 #include "freeplay/agents/perception.hpp"
 #include "freeplay/core/statistics.hpp"
 
-namespace freeplay::runner {
+namespace freeplay::results {
 
 namespace {
 
@@ -222,4 +222,4 @@ nlohmann::json EpisodeMetrics::to_json(double duration_s, const agents::SessionA
   return metrics;
 }
 
-}  // namespace freeplay::runner
+}  // namespace freeplay::results

@@ -1,15 +1,15 @@
+// The run folder (resume, torn last lines, configuration hashes, file ids) and the summaries written into it.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 
-#include "freeplay/core/atomic_file.hpp"
 #include "freeplay/core/error.hpp"
-#include "freeplay/runner/run_folder.hpp"
-#include "freeplay/runner/suite.hpp"
+#include "freeplay/results/run_folder.hpp"
+#include "freeplay/results/summary.hpp"
 
 using namespace freeplay;
-using namespace freeplay::runner;
+using namespace freeplay::results;
 
 namespace {
 
@@ -21,40 +21,6 @@ std::filesystem::path fresh_dir(const std::string& name) {
 }
 
 }  // namespace
-
-TEST(Suite, ExpandsSweepsAndAppliesEntryOverrides) {
-  const auto dir = fresh_dir("suite");
-  write_file_atomically(dir / "cc.yaml", "name: cc\ncondition: child-child\nepisodes: 3\n");
-  write_file_atomically(dir / "cr.yaml", "name: cr\ncondition: child-robot\n");
-  write_file_atomically(dir / "suite.yaml",
-                        "suite: s\nscenarios:\n"
-                        "  - scenario: cc.yaml\n    episodes: 5\n"
-                        "  - scenario: cr.yaml\n    set: {planner.name: rrtconnect}\n"
-                        "    sweep: {perception.latency_s: [0.1, 0.3], robot.arm_reach_m: [0.4, 0.5]}\n");
-  const auto suite = load_suite(dir / "suite.yaml");
-  ASSERT_EQ(suite.variants.size(), 5u);
-  EXPECT_EQ(suite.variants[0].id, "cc");
-  EXPECT_EQ(suite.variants[0].scenario.episodes, 5);
-  EXPECT_EQ(suite.variants[1].id, "cr[perception.latency_s=0.1,robot.arm_reach_m=0.4]");
-  EXPECT_EQ(suite.variants[4].scenario.planner.name, "rrtconnect");
-  EXPECT_DOUBLE_EQ(suite.variants[4].scenario.perception.latency_s, 0.3);
-  EXPECT_EQ(suite.total_episodes(), 5 + 4);
-  EXPECT_TRUE(is_suite_file(dir / "suite.yaml"));
-  EXPECT_FALSE(is_suite_file(dir / "cc.yaml"));
-}
-
-TEST(Suite, BadEntriesAreReportedWithTheSuiteLocation) {
-  const auto dir = fresh_dir("suite_bad");
-  write_file_atomically(dir / "suite.yaml", "suite: s\nscenarios:\n  - scenario: missing.yaml\n");
-  try {
-    load_suite(dir / "suite.yaml");
-    FAIL() << "expected an error";
-  } catch (const InputError& e) {
-    const std::string msg = e.what();
-    EXPECT_NE(msg.find("suite.yaml:3:15"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("does not exist"), std::string::npos) << msg;
-  }
-}
 
 TEST(RunFolder, ResumesAndDropsATornLastLine) {
   const auto dir = fresh_dir("run_folder");
@@ -103,4 +69,24 @@ TEST(RunFolder, RemembersAnEpisodeRecordedWithAnotherConfiguration) {
 
 TEST(RunFolder, EpisodeFileIdsAreSafe) {
   EXPECT_EQ(RunFolder::episode_file_id("cr[a.b=0.1]", 7), "cr_a.b=0.1_-0007");
+}
+
+TEST(RunFolder, WriteSummariesSummarisesTheFinishedEpisodesInVariantOrder) {
+  const auto dir = fresh_dir("run_folder_summaries");
+  {
+    RunFolder run(dir);
+    for (int i = 0; i < 3; ++i) {
+      run.append({{"variant", "cr"}, {"condition", "child-robot"}, {"episode", i}, {"duration_s", 600.0 * (i + 1)},
+                  {"config_hash", 1}});
+      run.append({{"variant", "cc"}, {"condition", "child-child"}, {"episode", i}, {"duration_s", 1200.0},
+                  {"config_hash", 2}});
+    }
+  }
+  const std::string markdown = write_summaries(dir, {"cc", "cr"}, "two variants");
+  ASSERT_TRUE(std::filesystem::is_regular_file(dir / "summary.csv"));
+  std::ifstream md_file(dir / "summary.md");
+  const std::string written((std::istreambuf_iterator<char>(md_file)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(written, markdown);
+  EXPECT_NE(markdown.find("two variants"), std::string::npos) << markdown;
+  EXPECT_LT(markdown.find("cc"), markdown.find("cr")) << markdown;  // the given order, not the records'
 }

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -11,7 +12,7 @@
 
 #include "freeplay/core/statistics.hpp"
 
-namespace freeplay::runner {
+namespace freeplay::results {
 
 /// What the real PInSoRo sessions measured for one condition (pinsoro-targets.md §2).
 struct PinsoroDurations {
@@ -103,4 +104,9 @@ std::string summary_csv(const std::vector<VariantSummary>& summaries);
 /// `summary.md`: the durations beside PInSoRo, then the main metrics per condition, readable in a terminal.
 std::string summary_markdown(const std::vector<VariantSummary>& summaries, const std::string& title);
 
-}  // namespace freeplay::runner
+/// Writes summary.csv and summary.md of the run folder `dir`'s finished episodes for the variants in
+/// `variant_order` (bootstraps on `threads` threads); returns the Markdown.
+std::string write_summaries(const std::filesystem::path& dir, const std::vector<std::string>& variant_order,
+                            const std::string& title, int threads = 1);
+
+}  // namespace freeplay::results

@@ -8,13 +8,30 @@
 #include <map>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <string>
 #include <string_view>
 #include <unordered_map>
 #include <vector>
 
-namespace freeplay::runner {
+namespace freeplay::results {
+
+/// The manifest each run folder carries (suite, variants and their episode counts, shard, overrides).
+inline constexpr const char* kRunManifestFile = "run.json";
+
+/// One variant a run must hold.
+struct ExpectedVariant {
+  std::string id;                            ///< suite variant id
+  int episodes = 0;                          ///< episodes 0 … episodes − 1
+  std::optional<std::uint64_t> config_hash;  ///< required configuration hash, when known
+};
+
+/// The episodes a run must hold, in suite order, and the heading of its summary.
+struct ExpectedRun {
+  std::string title;                     ///< heading of summary.md (the suite name by default)
+  std::vector<ExpectedVariant> variants; ///< in suite order
+};
 
 /// The run folder of a suite; safe to share between worker threads. Memory does not grow with the records: it keeps
 /// only an index (variant, episode, configuration hash) and reads episodes.jsonl from disk when asked.
@@ -69,4 +86,4 @@ class RunFolder {
 /// `contents` compressed in the gzip format (zlib, default level), readable with `zcat`.
 std::string gzip_compress(std::string_view contents);
 
-}  // namespace freeplay::runner
+}  // namespace freeplay::results

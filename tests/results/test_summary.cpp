@@ -2,10 +2,9 @@
 
 #include <cmath>
 
-#include "freeplay/runner/progress.hpp"
-#include "freeplay/runner/summary.hpp"
+#include "freeplay/results/summary.hpp"
 
-using namespace freeplay::runner;
+using namespace freeplay::results;
 
 TEST(Summary, GroupsByVariantAndFlattensMetrics) {
   std::vector<nlohmann::json> records;
@@ -81,13 +80,4 @@ TEST(Summary, BootstrapsOnSeveralThreadsGiveTheSameSummaries) {
     EXPECT_EQ(summary_csv(summaries), one) << threads;
     EXPECT_EQ(summary_markdown(summaries, "t"), summary_markdown(summarizer.finish(1), "t")) << threads;
   }
-}
-
-TEST(Progress, LineCountsEpisodesAndSimulatedHours) {
-  ProgressReporter progress(4, false);
-  progress.episode_done(1800.0);
-  progress.episode_done(1800.0);
-  const auto line = progress.line();
-  EXPECT_NE(line.find("2/4 episodes"), std::string::npos) << line;
-  EXPECT_NE(line.find("1.0 simulated h"), std::string::npos) << line;
 }
