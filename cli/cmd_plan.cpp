@@ -229,7 +229,8 @@ void run_plan(const PlanOptions& options) {
       executor.step(0.1, world, outputs);
       tray.step(0.1);
       for (const Event& event : tray.drain_events()) {
-        if (event.type == "interaction_event" && event.data.value("message", "") == releasing) {
+        const auto* message = event.get<events::InteractionEvent>();
+        if (message && message->message == releasing) {
           release_time = event.t - t0;
           executor.observe_release(tray.item(options.item).pose.position());
         }

@@ -9,7 +9,7 @@
 namespace freeplay {
 
 nlohmann::json Event::to_json() const {
-  return nlohmann::json{{"t", t}, {"source", source}, {"type", type}, {"data", data}};
+  return nlohmann::json{{"t", t}, {"source", source}, {"type", type()}, {"data", data()}};
 }
 
 namespace {
@@ -33,13 +33,13 @@ void append_event_json(std::string& out, const Event& event) {
     }
   };
   out += R"({"data":)";
-  serializer.dump(event.data, false, false, 0);
+  serializer.dump(event.data(), false, false, 0);
   out += R"(,"source":)";
   append_string(event.source);
   out += R"(,"t":)";
   serializer.dump(nlohmann::json(event.t), false, false, 0);
   out += R"(,"type":)";
-  append_string(event.type);
+  append_string(event.type());
   out += '}';
 }
 

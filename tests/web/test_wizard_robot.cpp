@@ -41,7 +41,7 @@ class Feed final : public runner::EpisodeObserver {
 std::vector<Event> of_type(const std::vector<Event>& events, const std::string& source, const std::string& type) {
   std::vector<Event> out;
   for (const auto& e : events) {
-    if (e.source == source && e.type == type) out.push_back(e);
+    if (e.source == source && e.type() == type) out.push_back(e);
   }
   return out;
 }
@@ -86,7 +86,7 @@ TEST(WizardRobot, AWizardMoveGoesThroughThePlannerAndTheExecutorToTheDropPoint) 
   });
   const auto results = of_type(r.log, "wizard", "move_result");
   ASSERT_EQ(results.size(), 1u);
-  EXPECT_EQ(results[0].data["status"], "succeeded");
+  EXPECT_EQ(results[0].data()["status"], "succeeded");
   EXPECT_EQ(of_type(r.log, "policy", "robot_action").size(), 0u);  // the policy does not act in wizard mode
   EXPECT_NEAR(r.zebra.x, 0.3, 0.01);
   EXPECT_NEAR(r.zebra.y, -0.1, 0.01);
@@ -112,8 +112,8 @@ TEST(WizardRobot, SupervisedProposalsExecuteAfterTheTimeoutUnlessVetoed) {
   const auto decisions = of_type(timed_out.log, "sparc", "decision");
   ASSERT_GE(proposals.size(), 1u);
   ASSERT_GE(decisions.size(), 1u);
-  EXPECT_EQ(decisions[0].data["decision"], "timeout_executed");
-  EXPECT_NEAR(decisions[0].data["latency_s"].get<double>(), 2.0, 1e-6);
+  EXPECT_EQ(decisions[0].data()["decision"], "timeout_executed");
+  EXPECT_NEAR(decisions[0].data()["latency_s"].get<double>(), 2.0, 1e-6);
   EXPECT_GE(of_type(timed_out.log, "policy", "robot_action").size(), 1u);
 
   // The wizard vetoes every proposal as soon as it appears: the policy never acts.
@@ -122,7 +122,7 @@ TEST(WizardRobot, SupervisedProposalsExecuteAfterTheTimeoutUnlessVetoed) {
   });
   const auto vetoes = of_type(vetoed.log, "sparc", "decision");
   ASSERT_GE(vetoes.size(), 1u);
-  for (const auto& d : vetoes) EXPECT_EQ(d.data["decision"], "vetoed");
+  for (const auto& d : vetoes) EXPECT_EQ(d.data()["decision"], "vetoed");
   EXPECT_EQ(of_type(vetoed.log, "policy", "robot_action").size(), 0u);
-  EXPECT_LT(vetoes[0].data["latency_s"].get<double>(), 0.25);
+  EXPECT_LT(vetoes[0].data()["latency_s"].get<double>(), 0.25);
 }

@@ -61,7 +61,7 @@ void WizardRobot::push(const Command& command) {
 
 void WizardRobot::observe(std::span<const Event> events, const std::map<std::string, Eigen::Vector3d>& faces) {
   for (const auto& e : events) {
-    if (e.type == "interaction_event") interaction_events_.push_back(e.data.value("message", ""));
+    if (const auto* message = e.get<events::InteractionEvent>()) interaction_events_.push_back(message->message);
   }
   faces_ = faces;
 }
