@@ -1,5 +1,6 @@
 #include "freeplay/core/events.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <type_traits>
 #include <utility>
@@ -63,47 +64,26 @@ json data(const SignalReceived& e) { return {{"name", e.name}, {"stage", e.stage
 json data(const FreeplayEnded& e) { return {{"ended_by", e.ended_by}, {"duration_s", e.duration_s}}; }
 json data(const Other& e) { return e.data; }
 
-// Readers of one field: true when `d` has `key` with a value of the field's JSON type (a double is a float, as the
-// log writes it, so that the field writes back the same text).
-bool read(const json& d, const char* key, std::string& out) {
+// The JSON type each field type is read from (a double is a float, as the log writes it, so that the field writes
+// back the same text).
+bool has_type(const json& v, const std::string*) { return v.is_string(); }
+bool has_type(const json& v, const int*) { return v.is_number_integer(); }
+bool has_type(const json& v, const std::uint64_t*) { return v.is_number_unsigned(); }
+bool has_type(const json& v, const double*) { return v.is_number_float(); }
+bool has_type(const json& v, const bool*) { return v.is_boolean(); }
+bool has_type(const json& v, const std::vector<std::string>*) {
+  return v.is_array() && std::all_of(v.begin(), v.end(), [](const json& x) { return x.is_string(); });
+}
+
+/// Reads field `key` of `d` into `out`: true when it is there with the field's JSON type.
+template <class T>
+bool read(const json& d, const char* key, T& out) {
   const auto it = d.find(key);
-  if (it == d.end() || !it->is_string()) return false;
-  out = it->get<std::string>();
+  if (it == d.end() || !has_type(*it, &out)) return false;
+  out = it->template get<T>();
   return true;
 }
-bool read(const json& d, const char* key, int& out) {
-  const auto it = d.find(key);
-  if (it == d.end() || !it->is_number_integer()) return false;
-  out = it->get<int>();
-  return true;
-}
-bool read(const json& d, const char* key, std::uint64_t& out) {
-  const auto it = d.find(key);
-  if (it == d.end() || !it->is_number_unsigned()) return false;
-  out = it->get<std::uint64_t>();
-  return true;
-}
-bool read(const json& d, const char* key, double& out) {
-  const auto it = d.find(key);
-  if (it == d.end() || !it->is_number_float()) return false;
-  out = it->get<double>();
-  return true;
-}
-bool read(const json& d, const char* key, bool& out) {
-  const auto it = d.find(key);
-  if (it == d.end() || !it->is_boolean()) return false;
-  out = it->get<bool>();
-  return true;
-}
-bool read(const json& d, const char* key, std::vector<std::string>& out) {
-  const auto it = d.find(key);
-  if (it == d.end() || !it->is_array()) return false;
-  for (const auto& v : *it) {
-    if (!v.is_string()) return false;
-    out.push_back(v.get<std::string>());
-  }
-  return true;
-}
+
 /// An optional field: absent is fine, present must read.
 template <class T>
 bool read_optional(const json& d, const char* key, std::optional<T>& out) {
