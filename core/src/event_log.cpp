@@ -33,7 +33,11 @@ void append_event_json(std::string& out, const Event& event) {
     }
   };
   out += R"({"data":)";
-  serializer.dump(event.data(), false, false, 0);
+  if (const auto* other = event.get<events::Other>()) {
+    serializer.dump(other->data, false, false, 0);  // kept as it came: written without a copy
+  } else {
+    serializer.dump(event.data(), false, false, 0);
+  }
   out += R"(,"source":)";
   append_string(event.source);
   out += R"(,"t":)";

@@ -184,10 +184,10 @@ nlohmann::json data_of(const EventPayload& payload) {
   return std::visit([](const auto& e) { return data(e); }, payload);
 }
 
-EventPayload payload_of(std::string_view type, const nlohmann::json& data) {
+EventPayload payload_of(std::string_view type, nlohmann::json data) {
   constexpr std::size_t kTyped = std::variant_size_v<EventPayload> - 1;  // every alternative but Other
   if (auto typed = typed_payload(type, data, std::make_index_sequence<kTyped>{})) return std::move(*typed);
-  return Other{std::string(type), data};
+  return Other{std::string(type), std::move(data)};
 }
 
 }  // namespace freeplay::events

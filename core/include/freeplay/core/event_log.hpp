@@ -27,8 +27,8 @@ struct Event {
   Event(double at, std::string from, events::EventPayload what)
       : t(at), source(std::move(from)), payload(std::move(what)) {}
   /// An event of `type` with `data`, typed when its type and data are one of events.hpp's (events::payload_of).
-  Event(double at, std::string from, std::string_view type, const nlohmann::json& data)
-      : t(at), source(std::move(from)), payload(events::payload_of(type, data)) {}
+  Event(double at, std::string from, std::string_view type, nlohmann::json data)
+      : t(at), source(std::move(from)), payload(events::payload_of(type, std::move(data))) {}
 
   /// Its type, e.g. "item_grabbed".
   std::string_view type() const { return events::type_of(payload); }

@@ -207,6 +207,6 @@ std::string_view type_of(const EventPayload& payload);
 nlohmann::json data_of(const EventPayload& payload);
 /// The payload of an event of `type` with `data`: the typed struct when `data` is exactly what that struct writes,
 /// otherwise Other.
-EventPayload payload_of(std::string_view type, const nlohmann::json& data);
+EventPayload payload_of(std::string_view type, nlohmann::json data);
 
 }  // namespace freeplay::events
