@@ -239,7 +239,8 @@ void run_plan(const PlanOptions& options) {
       mover.step(tray.time() - t0, sink);
       tray.step(runner::kMoveTickS);
       for (const Event& event : tray.drain_events()) {
-        if (event.type == "interaction_event" && event.data.value("message", "") == releasing) {
+        const auto* message = event.get<events::InteractionEvent>();
+        if (message && message->message == releasing) {
           release_time = event.t - t0;
           mover.observe_release(tray.item(options.item).pose.position());
         }

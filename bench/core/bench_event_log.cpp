@@ -25,6 +25,22 @@ void BM_EventLogEmit(benchmark::State& state) {
 }
 BENCHMARK(BM_EventLogEmit);
 
+// The same with a typed event of the episode (a child's touch, as SimWorld emits it).
+void BM_EventLogEmitTyped(benchmark::State& state) {
+  EventLog log;
+  int n = 0;
+  for (auto _ : state) {
+    if (n++ % 3000 == 0) {
+      state.PauseTiming();
+      log = EventLog{};
+      state.ResumeTiming();
+    }
+    log.emit(Event{0.1 * n, "child.purple", freeplay::events::TouchDown{1, 0.123456789 * n, -0.2, "stroke"}});
+  }
+  benchmark::DoNotOptimize(log.hash());
+}
+BENCHMARK(BM_EventLogEmitTyped);
+
 // The hash of a finished 3 000-event log (what the episode record reads once).
 void BM_EventLogHash(benchmark::State& state) {
   EventLog log;

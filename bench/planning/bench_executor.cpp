@@ -110,7 +110,9 @@ void BM_WholeMoveInPhysics(benchmark::State& state) {
       executor.step(0.1, world, outputs);
       tray.step(0.1);
       ++ticks;
-      for (const auto& event : tray.drain_events()) released = released || event.type == "interaction_event";
+      for (const auto& event : tray.drain_events()) {
+        released = released || event.get<events::InteractionEvent>() != nullptr;
+      }
     }
     ++moves;
   }

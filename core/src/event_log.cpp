@@ -9,7 +9,7 @@
 namespace freeplay {
 
 nlohmann::json Event::to_json() const {
-  return nlohmann::json{{"t", t}, {"source", source}, {"type", type}, {"data", data}};
+  return nlohmann::json{{"t", t}, {"source", source}, {"type", type()}, {"data", data()}};
 }
 
 namespace {
@@ -33,13 +33,17 @@ void append_event_json(std::string& out, const Event& event) {
     }
   };
   out += R"({"data":)";
-  serializer.dump(event.data, false, false, 0);
+  if (const auto* other = event.get<events::Other>()) {
+    serializer.dump(other->data, false, false, 0);  // kept as it came: written without a copy
+  } else {
+    serializer.dump(event.data(), false, false, 0);
+  }
   out += R"(,"source":)";
   append_string(event.source);
   out += R"(,"t":)";
   serializer.dump(nlohmann::json(event.t), false, false, 0);
   out += R"(,"type":)";
-  append_string(event.type);
+  append_string(event.type());
   out += '}';
 }
 

@@ -246,18 +246,20 @@ struct BagRecorder::Impl {
   /// Every utterance of the tick becomes sound in both microphones; the MP3 frames completed so far are written.
   void write_audio(double t, const runner::EpisodeSnapshot& s, bool last = false) {
     for (const auto& e : s.new_events) {
-      const bool child = e.source.rfind("child.", 0) == 0 && e.type == "speech";
-      const bool adult = (e.source == "robot" || e.source == "experimenter") && e.type == "say";
-      if (!child && !adult) continue;
+      const auto* speech = e.source.rfind("child.", 0) == 0 ? e.get<events::ChildSpeech>() : nullptr;
+      const auto* say = e.source == "robot" || e.source == "experimenter" ? e.get<events::Say>() : nullptr;
+      const bool child = speech != nullptr;
+      if (!child && say == nullptr) continue;
       Utterance u;
       u.start_s = e.t;
-      u.duration_s = e.data.value("duration_s", 0.0);
-      u.syllables = e.data.value("syllables", std::max(1, static_cast<int>(std::lround(kAdultSyllablesPerS * u.duration_s))));
+      u.duration_s = child ? speech->duration_s : say->duration_s;
+      u.syllables = child ? speech->syllables
+                          : std::max(1, static_cast<int>(std::lround(kAdultSyllablesPerS * u.duration_s)));
       u.seed = splitmix64(seed ^ fnv1a64(e.source) ^ ++utterances);
       u.pitch_hz = e.source == "robot" ? kRobotPitchHz : kExperimenterPitchHz;
       u.mouth = e.source == "robot" ? kRobotMouth : kExperimenterMouth;
-      u.text = e.data.value("text", "");
-      u.kind = e.data.value("kind", "");
+      u.text = child ? std::string() : say->text;
+      u.kind = child ? speech->kind : std::string();
       for (const auto& c : s.children) {
         if (child && "child." + c.seat == e.source) {
           u.pitch_hz = child_pitch_hz(c.age_years);
@@ -284,13 +286,13 @@ struct BagRecorder::Impl {
     put(topics::kEvents, t, text);
     ++stats.events;
     put_all(tick_topics->event(t, e));  // interaction events, the robot's speech, the stages' signals
-    if (e.type == "say" || e.type == "speech") {
+    if (e.get<events::Say>() != nullptr || e.get<events::ChildSpeech>() != nullptr) {
       msg::String speech;
-      speech.data = ros_string(nlohmann::json{{"t", e.t}, {"who", e.source}, {"data", e.data}}.dump());
+      speech.data = ros_string(nlohmann::json{{"t", e.t}, {"who", e.source}, {"data", e.data()}}.dump());
       put(topics::kAllSpeech, t, speech);
     }
-    if (e.source == "protocol" && e.type == "stage") {
-      const auto stage = e.data.value("stage", "");
+    if (const auto* started = e.get<events::Stage>(); started && e.source == "protocol") {
+      const auto& stage = started->stage;
       if (stage == "freeplay") freeplay_start = e.t;
       if (freeplay_start || stage == "debriefing") {
         const double since = e.t - freeplay_start.value_or(e.t);

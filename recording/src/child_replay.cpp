@@ -80,10 +80,11 @@ RecordedChildren read_recorded_children(const std::filesystem::path& session) {
       const auto json = nlohmann::json::parse(std_string(read_message<msg::String>(m)->data));
       Event e{json.at("t").get<double>(), json.at("source").get<std::string>(), json.at("type").get<std::string>(),
               json.value("data", nlohmann::json())};
-      if (e.source == "protocol" && e.type == "stage" && e.data.value("stage", "") == "freeplay") freeplay_start = e.t;
-      if (e.source == "protocol" && e.type == "freeplay_ended") {
-        duration = e.data.value("duration_s", 0.0);
-        out.ended_by = e.data.value("ended_by", "");
+      const auto* stage = e.get<events::Stage>();
+      if (stage && e.source == "protocol" && stage->stage == "freeplay") freeplay_start = e.t;
+      if (const auto* ended = e.get<events::FreeplayEnded>(); ended && e.source == "protocol") {
+        duration = ended->duration_s;
+        out.ended_by = ended->ended_by;
       }
       if (e.source.rfind("child.", 0) == 0) child_events.push_back(std::move(e));
     } else if (topic == topics::kTf) {
@@ -146,36 +147,36 @@ RecordedChildren read_recorded_children(const std::filesystem::path& session) {
       agents::ChildActions a;
       if (const auto it = events_at.find({seat, k}); it != events_at.end()) {
         for (const Event* e : it->second) {
-          const auto& d = e->data;
-          if (e->type == "touch_down") {
+          const auto d = e->data();
+          if (e->type() == "touch_down") {
             const int local = d.at("finger").get<int>() - offset;
             if (local < 1 || local > agents::kFingersPerChild) continue;
             const Vec2 p(d.at("x").get<double>(), d.at("y").get<double>());
             push(a, {local, agents::TouchPhase::Down, p});
             fingers[static_cast<std::size_t>(local)] = {true, p};
-          } else if (e->type == "touch_missed") {  // an off-screen press: the event does not name the finger
+          } else if (e->type() == "touch_missed") {  // an off-screen press: the event does not name the finger
             int local = 1;
             while (local < agents::kFingersPerChild && fingers[static_cast<std::size_t>(local)].down) ++local;
             push(a, {local, agents::TouchPhase::Down, Vec2(d.at("x").get<double>(), d.at("y").get<double>())});
             fingers[static_cast<std::size_t>(local)].down = false;
-          } else if (e->type == "touch_up") {
+          } else if (e->type() == "touch_up") {
             const int local = d.at("finger").get<int>() - offset;
             if (local < 1 || local > agents::kFingersPerChild) continue;
             push(a, {local, agents::TouchPhase::Up, Vec2::Zero()});
             fingers[static_cast<std::size_t>(local)].down = false;
-          } else if (e->type == "palette") {
+          } else if (e->type() == "palette") {
             a.select_colour = sim::palette_from_name(d.value("colour", ""));
-          } else if (e->type == "speech") {
+          } else if (e->type() == "speech") {
             agents::SpeechEvent speech;
             speech.kind = parse_name(agents::parse_utterance(d.value("kind", "")), d.value("kind", ""), "speech.kind");
             speech.to = parse_name(agents::parse_addressee(d.value("to", "")), d.value("to", ""), "speech.to");
             speech.duration_s = d.value("duration_s", 0.0);
             speech.syllables = d.value("syllables", 0);
             a.speech = speech;
-          } else if (e->type == "gaze") {
+          } else if (e->type() == "gaze") {
             gaze.kind = parse_name(agents::parse_gaze_kind(d.value("target", "")), d.value("target", ""), "gaze.target");
             gaze.item = d.contains("item") ? agents::item_index(d["item"].get<std::string>()) : -1;
-          } else if (e->type == "wants_to_stop") {
+          } else if (e->type() == "wants_to_stop") {
             quit = true;
           }
         }

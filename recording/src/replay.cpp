@@ -103,7 +103,7 @@ void feed_events(const SessionRecording& rec, double freeplay_start, double dura
                  results::EpisodeMetrics& metrics) {
   std::string ended_by = "cap";
   for (const auto& [tick, e] : rec.events) {
-    if (e.source == "protocol" && e.type == "freeplay_ended") ended_by = e.data.value("ended_by", "cap");
+    if (const auto* ended = e.get<events::FreeplayEnded>(); ended && e.source == "protocol") ended_by = ended->ended_by;
   }
   // The loop's ticks: k = 0, 1, … while k·0.1 < cap, or up to the tick at which the children quit.
   long ticks = 0;
@@ -146,10 +146,8 @@ void read_messages(Bag& bag, SessionRecording& out) {
       const auto json = nlohmann::json::parse(std_string(text->data));
       RecordedEvent e;
       e.tick = json.at("tick").get<double>();
-      e.event.t = json.at("t").get<double>();
-      e.event.source = json.at("source").get<std::string>();
-      e.event.type = json.at("type").get<std::string>();
-      e.event.data = json.value("data", nlohmann::json());
+      e.event = Event{json.at("t").get<double>(), json.at("source").get<std::string>(),
+                      json.at("type").get<std::string>(), json.value("data", nlohmann::json())};
       out.events.push_back(std::move(e));
     } else if (topic == topics::kTf) {
       const auto tf = read_message<msg::TFMessage>(m);
@@ -190,10 +188,12 @@ nlohmann::json recompute(const SessionRecording& rec) {
   bool child_robot = false;
   std::map<std::string, int> interaction;
   for (const auto& [tick, e] : rec.events) {
-    if (e.source == "protocol" && e.type == "stage" && e.data.value("stage", "") == "freeplay") freeplay_start = e.t;
-    if (e.source == "protocol" && e.type == "freeplay_ended") duration = e.data.value("duration_s", std::nan(""));
+    const auto* stage = e.get<events::Stage>();
+    if (stage && e.source == "protocol" && stage->stage == "freeplay") freeplay_start = e.t;
+    const auto* ended = e.get<events::FreeplayEnded>();
+    if (ended && e.source == "protocol") duration = ended->duration_s;
     if (e.source == "robot") child_robot = true;
-    if (e.type == "interaction_event") ++interaction[e.data.value("message", "")];
+    if (const auto* message = e.get<events::InteractionEvent>()) ++interaction[message->message];
   }
   agents::SessionAnnotations annotations;
   if (!rec.annotations_yaml.empty()) {

@@ -309,16 +309,16 @@ std::vector<TopicMessage> TickTopics::tick(const runner::EpisodeSnapshot& snapsh
 std::vector<TopicMessage> TickTopics::event(double t, const Event& e) const {
   std::vector<TopicMessage> out;
   if (!impl_->wants(kEventTopics)) return out;
-  if (e.type == "interaction_event") {
+  if (const auto* interaction = e.get<events::InteractionEvent>()) {
     msg::String message;
-    message.data = ros_string(e.data.value("message", ""));
+    message.data = ros_string(interaction->message);
     out.push_back({topics::kInteractionEvents, "game", t, false, std::move(message)});
-  } else if (e.type == "say" && e.source == "robot") {
+  } else if (const auto* say = e.get<events::Say>(); say && e.source == "robot") {
     msg::String speech;
-    speech.data = ros_string(e.data.value("text", ""));
+    speech.data = ros_string(say->text);
     out.push_back({topics::kSpeech, "robot", t, false, std::move(speech)});
-  } else if (e.source == "protocol" && e.type == "stage") {
-    if (const auto it = kStageSignals.find(e.data.value("stage", "")); it != kStageSignals.end()) {
+  } else if (const auto* stage = e.get<events::Stage>(); stage && e.source == "protocol") {
+    if (const auto it = kStageSignals.find(stage->stage); it != kStageSignals.end()) {
       out.push_back({topics::kSignalsPrefix + it->second, "supervisor", t, false, msg::Empty()});
     }
   }

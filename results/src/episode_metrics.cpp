@@ -27,33 +27,31 @@ void EpisodeMetrics::observe_new(const EventLog& log, double tick, const Metrics
   for (; fed_ < events.size(); ++fed_) observe(events[fed_], tick, world);
 }
 
-std::string EpisodeMetrics::mover_of(const nlohmann::json& data) const {
-  if (data.value("holder", "") == "robot") return "robot";
-  const int finger = data.value("finger", 0);
+std::string EpisodeMetrics::mover_of(const std::optional<int>& finger) const {
+  if (!finger) return "robot";
   for (std::size_t i = 0; i < seats_.size(); ++i) {
     const int offset = static_cast<int>(i) * agents::kFingersPerChild;  // purple: touch1…3, yellow: touch4…6
-    if (finger > offset && finger <= offset + agents::kFingersPerChild) return seats_[i];
+    if (*finger > offset && *finger <= offset + agents::kFingersPerChild) return seats_[i];
   }
   return "";
 }
 
 void EpisodeMetrics::observe(const Event& e, double tick, const MetricsWorld& world) {
-  if (e.source == "protocol" && e.type == "stage") {
-    const auto stage = e.data.value("stage", "");
-    in_freeplay_ = stage == "freeplay";
+  if (const auto* stage = e.get<events::Stage>(); stage && e.source == "protocol") {
+    in_freeplay_ = stage->stage == "freeplay";
     if (in_freeplay_) freeplay_start_ = e.t;
   }
   const double t = tick - freeplay_start_;  // free-play time of the snapshot that carried the event
   if (starts_with(e.source, "child.")) {
     const auto seat = e.source.substr(6);
-    if (e.type == "touch_down") ++touches_[seat];
-    if (e.type == "gaze") children_gaze_[seat] = {e.data.value("target", "away"), e.data.value("item", "")};
+    if (e.get<events::TouchDown>() != nullptr) ++touches_[seat];
+    if (const auto* gaze = e.get<events::ChildGaze>()) children_gaze_[seat] = {gaze->target, gaze->item.value_or("")};
   }
   if (e.source == "robot") on_robot_event(e, t);
-  if (e.type == "item_grabbed") on_grab(e.data, t, world);
-  if (e.type == "item_released") on_release(e.data, t, world);
-  if (e.type == "interaction_event") {
-    const auto message = e.data.value("message", "");
+  if (const auto* grab = e.get<events::ItemGrabbed>()) on_grab(*grab, t, world);
+  if (const auto* release = e.get<events::ItemReleased>()) on_release(*release, t, world);
+  if (const auto* interaction = e.get<events::InteractionEvent>()) {
+    const auto& message = interaction->message;
     if (!starts_with(message, "releasing_")) return;
     const auto target = pending_placement_.find(message.substr(10));
     if (target == pending_placement_.end()) return;
@@ -64,25 +62,25 @@ void EpisodeMetrics::observe(const Event& e, double tick, const MetricsWorld& wo
 
 void EpisodeMetrics::on_robot_event(const Event& e, double t) {
   std::string action;
-  if (e.type == "move_goal") {
+  if (const auto* goal = e.get<events::MoveGoal>()) {
     action = "move";
     ++moves_started_;
-    robot_gaze_ = {"item", e.data.value("item", "")};
-    move_targets_[robot_gaze_.target] = Vec2(e.data.value("x", 0.0), e.data.value("y", 0.0));
-  } else if (e.type == "look_at") {
+    robot_gaze_ = {"item", goal->item};
+    move_targets_[robot_gaze_.target] = Vec2(goal->x, goal->y);
+  } else if (const auto* look = e.get<events::LookAt>()) {
     action = "look";
-    if (e.data.contains("child")) robot_gaze_ = {"child", e.data.value("child", "")};
-    else if (e.data.contains("item")) robot_gaze_ = {"item", e.data.value("item", "")};
+    if (look->child) robot_gaze_ = {"child", *look->child};
+    else if (look->item) robot_gaze_ = {"item", *look->item};
     else robot_gaze_ = {"tray", ""};
-  } else if (e.type == "point_at") {
+  } else if (e.get<events::PointAt>() != nullptr) {
     action = "point";
-  } else if (e.type == "cancel") {
+  } else if (e.get<events::Cancel>() != nullptr) {
     action = "cancel";
-  } else if (e.type == "say" && in_freeplay_) {
-    action = "say";
-  } else if (e.type == "move_result") {
+  } else if (e.get<events::Say>() != nullptr) {
+    if (in_freeplay_) action = "say";
+  } else if (e.type() == "move_result") {  // its fields are the robot side's (events::Other)
     robot_gaze_ = {"tray", ""};
-    const auto& d = e.data;
+    const auto d = e.data();
     if (d.contains("path_length_m")) path_lengths_m_.push_back(d["path_length_m"].get<double>());
     if (d.contains("min_clearance_mm")) clearances_mm_.push_back(d["min_clearance_mm"].get<double>());
     if (d.contains("sync_error_mm_mean")) {
@@ -113,25 +111,25 @@ void EpisodeMetrics::on_robot_event(const Event& e, double t) {
   }
 }
 
-void EpisodeMetrics::on_grab(const nlohmann::json& data, double t, const MetricsWorld& world) {
-  const auto item = data.value("item", "");
-  const auto mover = mover_of(data);
+void EpisodeMetrics::on_grab(const events::ItemGrabbed& grab, double t, const MetricsWorld& world) {
+  const auto& item = grab.item;
+  const auto mover = mover_of(grab.finger);
   auto& h = history_[item];
   h.grabbed_at = world.item_position(item);
   h.zone_at_grab = world.zone_at(h.grabbed_at);
   const bool recently_other = !h.last_mover.empty() && h.last_mover != mover && t - h.last_move_t < kTakenWindowS;
   bool shared_with_robot = false;
   bool shared_with_child = false;
-  for (const auto& other : data.value("shared_with", nlohmann::json::array())) {
+  for (const auto& other : grab.shared_with) {
     if (other == "robot") shared_with_robot = true; else shared_with_child = true;
   }
   if (mover == "robot" && (shared_with_child || (recently_other && h.last_mover != "robot"))) ++taken_by_robot_;
   if (mover != "robot" && (shared_with_robot || (recently_other && h.last_mover == "robot"))) ++taken_by_child_;
 }
 
-void EpisodeMetrics::on_release(const nlohmann::json& data, double t, const MetricsWorld& world) {
-  const auto item = data.value("item", "");
-  const auto mover = mover_of(data);
+void EpisodeMetrics::on_release(const events::ItemReleased& release, double t, const MetricsWorld& world) {
+  const auto& item = release.item;
+  const auto mover = mover_of(release.finger);
   auto& h = history_[item];
   const Vec2 at = world.item_position(item);
   if ((at - h.grabbed_at).norm() < kMinMoveM) return;

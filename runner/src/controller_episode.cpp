@@ -286,7 +286,8 @@ class ControllerEpisode {
     mover_->step(time(), tray_sink_);
     tray_.step(kGameTickS);
     for (auto& e : tray_.drain_events()) {
-      if (e.type == "interaction_event" && e.data.value("message", "").rfind("releasing_", 0) == 0) released_ = true;
+      const auto* message = e.get<events::InteractionEvent>();
+      if (message && message->message.rfind("releasing_", 0) == 0) released_ = true;
     }
   }
 

@@ -158,8 +158,7 @@ class Episode {
                          : s == sim::Signal::StartFreeplay                            ? kFreeplay
                          : s == sim::Signal::BlankInterface && current == kFreeplay ? kDebriefing
                                                                                       : -1;
-      world_.log().emit({world_.now(), "protocol", "signal_received",
-                         {{"name", std::string(sim::signal_name(s))}, {"stage", stage_}}});
+      world_.log().emit({world_.now(), "protocol", events::SignalReceived{std::string(sim::signal_name(s)), stage_}});
       if (target > current) {
         jump_to_ = std::max(jump_to_, target);
       } else {
@@ -170,7 +169,7 @@ class Episode {
 
   void stage_event(const std::string& name) {
     stage_ = name;
-    world_.log().emit({world_.now(), "protocol", "stage", {{"stage", name}}});
+    world_.log().emit({world_.now(), "protocol", events::Stage{name}});
   }
 
   EpisodeResult& aborted(EpisodeResult& result) {

@@ -24,9 +24,8 @@ class MomentObserver final : public EpisodeObserver {
   void observe(const EpisodeSnapshot& snapshot) override {
     if (captured_) return;
     for (const auto& event : snapshot.new_events) {
-      if (event.source == "protocol" && event.type == "stage" && event.data.is_object()) {
-        stage_starts_[event.data.value("stage", "")] = event.t;
-      }
+      const auto* stage = event.get<events::Stage>();
+      if (stage && event.source == "protocol") stage_starts_[stage->stage] = event.t;
     }
     if (snapshot.stage != moment_.stage) return;
     const auto start = stage_starts_.find(moment_.stage);

@@ -40,14 +40,6 @@ struct PlayerState {
   }
 };
 
-std::string text(const nlohmann::json& data, const char* key) {
-  return data.is_object() && data.contains(key) && data[key].is_string() ? data[key].get<std::string>() : std::string{};
-}
-
-double number(const nlohmann::json& data, const char* key) {
-  return data.is_object() && data.contains(key) && data[key].is_number() ? data[key].get<double>() : 0.0;
-}
-
 }  // namespace
 
 std::vector<Event> read_event_log(const std::filesystem::path& path) {
@@ -76,8 +68,8 @@ agents::SessionAnnotations code_event_log(const std::vector<Event>& events, cons
   double end = -1.0;
   bool robot = true;
   for (const Event& e : events) {
-    if (e.type == "stage" && text(e.data, "stage") == "freeplay") start = e.t;
-    if (e.type == "freeplay_ended") end = e.t;
+    if (const auto* stage = e.get<events::Stage>(); stage && stage->stage == "freeplay") start = e.t;
+    if (e.get<events::FreeplayEnded>() != nullptr) end = e.t;
     if (e.source == "child.yellow") robot = false;
   }
   if (start < 0.0) throw InputError("the event log has no free-play stage", "stage", "freeplay");
@@ -92,62 +84,63 @@ agents::SessionAnnotations code_event_log(const std::vector<Event>& events, cons
   };
   const auto apply = [&](const Event& e) {
     PlayerState* p = player_of(e.source);
-    if (e.source == "sandtray" && e.type == "item_grabbed") {
+    if (const auto* grab = e.get<events::ItemGrabbed>(); grab && e.source == "sandtray") {
       // The item under a finger that just pressed; the robot's grab is its virtual finger going down.
-      const int item = agents::item_index(text(e.data, "item"));
-      if (text(e.data, "holder") != "robot") {
+      const int item = agents::item_index(grab->item);
+      if (grab->finger) {
         // Fingers 1–3 are purple's, 4–6 yellow's (the episode's touch1…touch6); logs carry the global number.
-        const int finger = static_cast<int>(number(e.data, "finger"));
+        const int finger = *grab->finger;
         PlayerState& owner = finger <= agents::kFingersPerChild ? players[0] : players[1];
         if (owner.fingers.count(finger)) owner.fingers[finger].item = item;
       }
       return;
     }
     // The robot's virtual finger is on the screen from a move's goal to its result.
-    if (e.source == "robot" && e.type == "move_goal") {
-      const int item = agents::item_index(text(e.data, "item"));
-      players[1].fingers[0] = {{number(e.data, "x"), number(e.data, "y")}, item};
+    if (const auto* goal = e.get<events::MoveGoal>(); goal && e.source == "robot") {
+      const int item = agents::item_index(goal->item);
+      players[1].fingers[0] = {{goal->x, goal->y}, item};
       players[1].started = true;
       players[1].gaze = agents::GazeTarget{};  // the robot looks at what it moves
       players[1].gaze.kind = agents::GazeKind::Item;
       players[1].gaze.item = item;
       return;
     }
-    if (e.source == "robot" && e.type == "move_result") {
+    if (e.source == "robot" && e.type() == "move_result") {
       players[1].fingers.erase(0);
       players[1].gaze = agents::GazeTarget{};
       players[1].gaze.kind = agents::GazeKind::Tray;
       return;
     }
     if (p == nullptr) return;
-    if (e.type == "touch_down") {
-      p->fingers[static_cast<int>(number(e.data, "finger"))] = {{number(e.data, "x"), number(e.data, "y")}, -1};
+    if (const auto* down = e.get<events::TouchDown>()) {
+      p->fingers[down->finger] = {{down->x, down->y}, -1};
       p->started = true;
-    } else if (e.type == "touch_up") {
-      p->fingers.erase(static_cast<int>(number(e.data, "finger")));
-    } else if (e.type == "gaze") {
+    } else if (const auto* up = e.get<events::TouchUp>()) {
+      p->fingers.erase(up->finger);
+    } else if (const auto* gaze = e.get<events::ChildGaze>()) {
       p->gaze = agents::GazeTarget{};
-      p->gaze.kind = agents::parse_gaze_kind(text(e.data, "target")).value_or(agents::GazeKind::Away);
-      p->gaze.item = agents::item_index(text(e.data, "item"));
-    } else if (e.type == "palette") {
-      p->colour = sim::palette_from_name(text(e.data, "colour"));
-    } else if (e.type == "speech") {
+      p->gaze.kind = agents::parse_gaze_kind(gaze->target).value_or(agents::GazeKind::Away);
+      p->gaze.item = agents::item_index(gaze->item.value_or(""));
+    } else if (const auto* palette = e.get<events::Palette>()) {
+      p->colour = sim::palette_from_name(palette->colour);
+    } else if (const auto* said = e.get<events::ChildSpeech>()) {
       agents::SpeechEvent speech;
-      speech.kind = agents::parse_utterance(text(e.data, "kind")).value_or(agents::Utterance::Comment);
-      speech.to = agents::parse_addressee(text(e.data, "to")).value_or(agents::Addressee::Nobody);
+      speech.kind = agents::parse_utterance(said->kind).value_or(agents::Utterance::Comment);
+      speech.to = agents::parse_addressee(said->to).value_or(agents::Addressee::Nobody);
       p->speech = speech;
-    } else if (e.type == "look_at") {
+    } else if (const auto* look = e.get<events::LookAt>()) {
       p->gaze = agents::GazeTarget{};
-      if (!text(e.data, "child").empty()) {
+      if (look->child && !look->child->empty()) {
         p->gaze.kind = agents::GazeKind::PartnerFace;
       } else {
-        p->gaze.kind = text(e.data, "item").empty() ? agents::GazeKind::Tray : agents::GazeKind::Item;
-        p->gaze.item = agents::item_index(text(e.data, "item"));
-        p->gaze.point = {number(e.data, "x"), number(e.data, "y")};
+        const std::string item = look->item.value_or("");
+        p->gaze.kind = item.empty() ? agents::GazeKind::Tray : agents::GazeKind::Item;
+        p->gaze.item = agents::item_index(item);
+        p->gaze.point = {look->x, look->y};
         if (p->fingers.count(0)) p->fingers[0].point = p->gaze.point;  // the robot looks at its finger
       }
-    } else if (e.type == "say") {  // a child hears whatever the robot says as said to it
-      p->speech = agents::SpeechEvent{agents::Utterance::Comment, agents::Addressee::Partner, number(e.data, "duration_s"), 0};
+    } else if (const auto* say = e.get<events::Say>()) {  // a child hears whatever the robot says as said to it
+      p->speech = agents::SpeechEvent{agents::Utterance::Comment, agents::Addressee::Partner, say->duration_s, 0};
     }
   };
 

@@ -107,7 +107,7 @@ void SimWorld::start_freeplay() {
 
 void SimWorld::finish_freeplay(double duration, const std::string& ended_by) {
   drawing_coverage_ = sim::differing_pixel_share(tray_.background(), freeplay_map_);
-  log_.emit({freeplay_start_ + duration, "protocol", "freeplay_ended", {{"ended_by", ended_by}, {"duration_s", duration}}});
+  log_.emit({freeplay_start_ + duration, "protocol", events::FreeplayEnded{ended_by, duration}});
   for (auto& c : children_) c.agent->finish(duration);
   coder_->finish(duration);
 }
@@ -340,7 +340,7 @@ void SimWorld::apply(ChildSlot& c, double t) {
   const double at = now();
   if (a.select_colour) {
     tray_.select_colour(*a.select_colour);
-    log_.emit({at, "child." + c.seat_name, "palette", {{"colour", std::string(sim::palette_name(*a.select_colour))}}});
+    log_.emit({at, "child." + c.seat_name, events::Palette{std::string(sim::palette_name(*a.select_colour))}});
   }
   for (int i = 0; i < a.touch_count; ++i) {
     const auto& cmd = a.touches[static_cast<std::size_t>(i)];
@@ -352,19 +352,17 @@ void SimWorld::apply(ChildSlot& c, double t) {
         if (down) tray_.touch_up(finger);
         down = false;
         if (!sim::on_screen(cmd.point)) {
-          log_.emit({at, "child." + c.seat_name, "touch_missed", {{"x", cmd.point.x()}, {"y", cmd.point.y()}}});
+          log_.emit({at, "child." + c.seat_name, events::TouchMissed{cmd.point.x(), cmd.point.y()}});
           break;
         }
         const auto outcome = tray_.touch_down(finger, cmd.point);
         down = true;
         c.last_touch_t = t;
-        log_.emit({at, "child." + c.seat_name, "touch_down",
-                   {{"finger", finger},
-                    {"x", cmd.point.x()},
-                    {"y", cmd.point.y()},
-                    {"outcome", outcome == sim::TouchOutcome::GrabbedItem    ? "item"
-                                : outcome == sim::TouchOutcome::StartedStroke ? "stroke"
-                                                                              : "ignored"}}});
+        log_.emit({at, "child." + c.seat_name,
+                   events::TouchDown{finger, cmd.point.x(), cmd.point.y(),
+                                     outcome == sim::TouchOutcome::GrabbedItem    ? "item"
+                                     : outcome == sim::TouchOutcome::StartedStroke ? "stroke"
+                                                                                   : "ignored"}});
         break;
       }
       case agents::TouchPhase::Move: {
@@ -378,30 +376,29 @@ void SimWorld::apply(ChildSlot& c, double t) {
         if (!down) break;
         tray_.touch_up(finger);
         down = false;
-        log_.emit({at, "child." + c.seat_name, "touch_up", {{"finger", finger}}});
+        log_.emit({at, "child." + c.seat_name, events::TouchUp{finger}});
         break;
     }
   }
   if (a.speech) {
     c.speaking_until = t + a.speech->duration_s;
-    log_.emit({at, "child." + c.seat_name, "speech",
-               {{"kind", std::string(agents::utterance_name(a.speech->kind))},
-                {"to", std::string(agents::addressee_name(a.speech->to))},
-                {"duration_s", a.speech->duration_s},
-                {"syllables", a.speech->syllables}}});
+    log_.emit({at, "child." + c.seat_name,
+               events::ChildSpeech{std::string(agents::utterance_name(a.speech->kind)),
+                                   std::string(agents::addressee_name(a.speech->to)), a.speech->duration_s,
+                                   a.speech->syllables}});
   }
   if (a.gaze.kind != c.last_gaze_kind || a.gaze.item != c.last_gaze_item) {
     c.last_gaze_kind = a.gaze.kind;
     c.last_gaze_item = a.gaze.item;
-    nlohmann::json data{{"target", std::string(agents::gaze_kind_name(a.gaze.kind))}};
+    events::ChildGaze gaze{std::string(agents::gaze_kind_name(a.gaze.kind)), std::nullopt};
     if (a.gaze.kind == agents::GazeKind::Item && a.gaze.item >= 0) {
-      data["item"] = std::string(agents::kItemNames[static_cast<std::size_t>(a.gaze.item)]);
+      gaze.item = std::string(agents::kItemNames[static_cast<std::size_t>(a.gaze.item)]);
     }
-    log_.emit({at, "child." + c.seat_name, "gaze", std::move(data)});
+    log_.emit({at, "child." + c.seat_name, std::move(gaze)});
   }
   if (a.quit && !c.announced_quit) {
     c.announced_quit = true;
-    log_.emit({at, "child." + c.seat_name, "wants_to_stop", nullptr});
+    log_.emit({at, "child." + c.seat_name, events::WantsToStop{}});
   }
 }
 

@@ -24,7 +24,9 @@ nlohmann::json profile_json(const agents::ChildProfile& p) {
 
 void SimWorld::drain_tray_events() {
   for (auto& e : tray_.drain_events()) {
-    if (e.type == "interaction_event") pending_interaction_events_.push_back(e.data.value("message", ""));
+    if (const auto* message = e.get<events::InteractionEvent>()) {
+      pending_interaction_events_.push_back(message->message);
+    }
     log_.emit(std::move(e));
   }
   metrics_.observe_new(log_, tray_.time(), SandtrayMetricsWorld(tray_));

@@ -73,12 +73,12 @@ void SimWorld::greet(const std::string& text) {
   robot_speech_started_ = 0.0;
   robot_speaking_until_ = duration;
   robot_speaking_until_abs_ = now() + duration;
-  log_.emit({now(), "robot", "say", {{"text", text}, {"to", ""}, {"duration_s", duration}}});
+  log_.emit({now(), "robot", events::Say{text, "", duration}});
 }
 
 void SimWorld::move_started(const policies::MoveItem& move, bool running, double /*t*/) {
   robot_moving_ = running;
-  log_.emit({now(), "robot", "move_goal", {{"item", move.item}, {"x", move.target.x()}, {"y", move.target.y()}}});
+  log_.emit({now(), "robot", events::MoveGoal{move.item, move.target.x(), move.target.y()}});
   robot_gaze_ = {RobotGaze::Kind::Item, move.item};
 }
 
@@ -105,9 +105,9 @@ void SimWorld::look_at_point(const Eigen::Vector3d& point) {
   }
   body_->look_at(point);
   robot_gaze_point_ = point;
-  nlohmann::json data{{"x", point.x()}, {"y", point.y()}, {"z", point.z()}};
-  if (robot_gaze_.kind == RobotGaze::Kind::Item) data["item"] = robot_gaze_.target;  // the item looked at
-  log_.emit({now(), "robot", "look_at", std::move(data)});
+  events::LookAt look{std::nullopt, point.x(), point.y(), point.z(), std::nullopt};
+  if (robot_gaze_.kind == RobotGaze::Kind::Item) look.item = robot_gaze_.target;  // the item looked at
+  log_.emit({now(), "robot", std::move(look)});
 }
 
 void SimWorld::look_at(const policies::LookAt& look, double /*t*/) {
@@ -115,7 +115,7 @@ void SimWorld::look_at(const policies::LookAt& look, double /*t*/) {
     robot_gaze_ = {RobotGaze::Kind::Child, *look.child};
     robot_gaze_point_ = body_->child_face(*look.child);
     body_->look_at(robot_gaze_point_);
-    log_.emit({now(), "robot", "look_at", {{"child", *look.child}}});
+    log_.emit({now(), "robot", events::LookAt{*look.child, 0.0, 0.0, 0.0, std::nullopt}});
   } else if (look.point) {
     look_at_point(*look.point);
   }
@@ -124,18 +124,18 @@ void SimWorld::look_at(const policies::LookAt& look, double /*t*/) {
 void SimWorld::point_at(const Vec2& point, double t) {
   body_->point_at(point);
   last_pose_t_ = t;
-  log_.emit({now(), "robot", "point_at", {{"x", point.x()}, {"y", point.y()}}});
+  log_.emit({now(), "robot", events::PointAt{point.x(), point.y()}});
 }
 
 void SimWorld::say(const std::string& text, const std::string& to, double duration_s, double t) {
   robot_speech_started_ = t;
   robot_speaking_until_ = t + duration_s;
   robot_speaking_until_abs_ = now() + duration_s;
-  log_.emit({now(), "robot", "say", {{"text", text}, {"to", to}, {"duration_s", duration_s}}});
+  log_.emit({now(), "robot", events::Say{text, to, duration_s}});
 }
 
 void SimWorld::cancel(double /*t*/) {
-  log_.emit({now(), "robot", "cancel", nullptr});
+  log_.emit({now(), "robot", events::Cancel{}});
 }
 
 // `/poses` from outside reach the game and the Nao follows them (nao_behaviours); gaze and pointing move the Nao;

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 #include "freeplay/core/error.hpp"
 #include "freeplay/sim/canvas.hpp"
@@ -242,9 +243,7 @@ struct Sandtray::Impl {
 
   double seconds() const { return static_cast<double>(now) * 1e-9; }
 
-  void emit(std::string type, nlohmann::json data) {
-    events.push_back(Event{seconds(), "sandtray", std::move(type), std::move(data)});
-  }
+  void emit(events::EventPayload payload) { events.push_back(Event{seconds(), "sandtray", std::move(payload)}); }
 
   int item_index_at(const Vec2& p) const {
     if (state == GameState::Blank) return -1;
@@ -292,9 +291,10 @@ struct Sandtray::Impl {
     s.holder = s.holders.empty() ? Holder{} : s.holders.front();
   }
 
-  static nlohmann::json holder_json(const Holder& holder) {
-    if (holder.kind == Holder::Kind::Robot) return {{"holder", "robot"}};
-    return {{"holder", "finger"}, {"finger", holder.finger}};
+  /// The finger of a holder in an event (empty for the robot).
+  static std::optional<int> holder_finger(const Holder& holder) {
+    if (holder.kind == Holder::Kind::Robot) return std::nullopt;
+    return holder.finger;
   }
 
   b2MouseJoint* attach(int index, const Vec2& target) {
@@ -313,22 +313,17 @@ struct Sandtray::Impl {
   }
 
   void grabbed_event(int index, const Holder& holder) {
-    nlohmann::json data = holder_json(holder);
-    data["item"] = items[static_cast<std::size_t>(index)].spec->name;
-    nlohmann::json others = nlohmann::json::array();
+    events::ItemGrabbed grabbed{items[static_cast<std::size_t>(index)].spec->name, holder_finger(holder), {}};
     for (const Holder& other : holders_of(index)) {
       if (other == holder) continue;
-      others.push_back(other.kind == Holder::Kind::Robot ? std::string("robot") : touch_frame(other.finger));
+      grabbed.shared_with.push_back(other.kind == Holder::Kind::Robot ? std::string("robot")
+                                                                      : touch_frame(other.finger));
     }
-    data["shared_with"] = others;
-    emit("item_grabbed", std::move(data));
+    emit(std::move(grabbed));
   }
 
   void released_event(int index, const Holder& holder, const char* reason) {
-    nlohmann::json data = holder_json(holder);
-    data["item"] = items[static_cast<std::size_t>(index)].spec->name;
-    data["reason"] = reason;
-    emit("item_released", std::move(data));
+    emit(events::ItemReleased{items[static_cast<std::size_t>(index)].spec->name, holder_finger(holder), reason});
   }
 
   void release_finger(int f, const char* reason) {
@@ -344,7 +339,7 @@ struct Sandtray::Impl {
       canvas.end_stroke(f);
       finger.mode = FingerMode::Idle;
       publish_requested = true;
-      emit("stroke_finished", {{"finger", f}});
+      emit(events::StrokeFinished{f});
     }
   }
 
@@ -355,7 +350,7 @@ struct Sandtray::Impl {
       robot.joint = nullptr;
       robot.item = -1;
       if (std::string_view(reason) == "timeout") {
-        emit("interaction_event", {{"message", "releasing_" + items[static_cast<std::size_t>(index)].spec->name}});
+        emit(events::InteractionEvent{"releasing_" + items[static_cast<std::size_t>(index)].spec->name});
       }
       released_event(index, Holder{Holder::Kind::Robot, 0}, reason);
     }
@@ -417,7 +412,7 @@ struct Sandtray::Impl {
   void set_drawing(bool enabled) {
     if (drawing != enabled) {
       drawing = enabled;
-      emit("background_drawing", {{"enabled", enabled}});
+      emit(events::BackgroundDrawing{enabled});
     }
   }
 
@@ -443,7 +438,7 @@ struct Sandtray::Impl {
     canvas.mark_published();
     publish_requested = false;
     ++background_version;
-    emit("background_published", {{"version", background_version}});
+    emit(events::BackgroundPublished{background_version});
   }
 
   void enter_state(GameState next) {
@@ -487,7 +482,7 @@ struct Sandtray::Impl {
         canvas.set_background(BackgroundKind::FreeplayMap);
         break;
     }
-    emit("state_changed", {{"state", std::string(game_state_name(next))}});
+    emit(events::StateChanged{std::string(game_state_name(next))});
     publish_background();
   }
 
@@ -667,7 +662,7 @@ void Sandtray::signal(Signal s) {
     case Signal::ShuffleItems: d.shuffle_items(); break;
     case Signal::ItemsToStash: d.items_to_stash(); break;
   }
-  d.emit("signal", {{"name", std::string(signal_name(s))}});
+  d.emit(events::GameSignal{std::string(signal_name(s))});
 }
 
 GameState Sandtray::state() const { return impl_->state; }
@@ -703,7 +698,7 @@ TouchOutcome Sandtray::touch_down(int finger, const Vec2& p) {
     f.joint = d.attach(hit, p);
     d.grabbed_event(hit, Holder{Holder::Kind::Finger, finger});
   } else if (mode == Impl::FingerMode::Stroke) {
-    d.emit("stroke_started", {{"finger", finger}, {"colour", std::string(palette_name(d.colour))}});
+    d.emit(events::StrokeStarted{finger, std::string(palette_name(d.colour))});
   }
   return outcome;
 }

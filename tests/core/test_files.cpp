@@ -52,6 +52,6 @@ TEST(EventLog, IncrementalTextAndHashEqualTheEventsSerialisedAgain) {
   for (const auto& e : log.events()) rebuilt += e.to_json().dump() + '\n';
   EXPECT_EQ(log.to_jsonl(), rebuilt);
   EXPECT_EQ(log.hash(), fnv1a64(rebuilt));
-  EXPECT_EQ(log.events()[0].data.at("colour"), "blue");  // the data survives its serialisation
+  EXPECT_EQ(log.events()[0].data().at("colour"), "blue");  // the data survives its serialisation
   EXPECT_EQ(EventLog{}.hash(), fnv1a64(""));
 }

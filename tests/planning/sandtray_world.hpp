@@ -75,7 +75,7 @@ PhysicsRun run_in_physics(sim::Sandtray& tray, MoveExecutor& executor, const Mov
     executor.step(0.1, world, outputs);
     tray.step(0.1);
     for (const Event& event : tray.drain_events()) {
-      if (event.type == "interaction_event" && event.data.value("message", "") == releasing) {
+      if (event.type() == "interaction_event" && event.data().value("message", "") == releasing) {
         run.release_time = event.t;
         executor.observe_release(tray.item(goal.item).pose.position());
       }

@@ -19,8 +19,8 @@ inline int expect_utterances_heard(const std::vector<float>& samples, const std:
   const auto onsets = voice_onsets_s(samples);
   std::vector<std::pair<double, double>> spoken;  // start, end
   for (const auto& e : events) {
-    if ((e.type == "speech" && e.source.rfind("child.", 0) == 0) || (e.type == "say" && e.source == "robot")) {
-      spoken.emplace_back(e.t, e.t + e.data.value("duration_s", 0.0));
+    if ((e.type() == "speech" && e.source.rfind("child.", 0) == 0) || (e.type() == "say" && e.source == "robot")) {
+      spoken.emplace_back(e.t, e.t + e.data().value("duration_s", 0.0));
     }
   }
   EXPECT_FALSE(spoken.empty());

@@ -59,16 +59,16 @@ std::vector<std::string> child_touches(const EventLog& log) {
   std::vector<std::string> out;
   for (const auto& e : log.events()) {
     if (e.source.rfind("child.", 0) != 0) continue;
-    if (e.type != "touch_down" && e.type != "touch_up" && e.type != "touch_missed") continue;
-    out.push_back(fmt::format("{:.6f} {} {} {} {} {}", e.t, e.source, e.type, e.data.value("finger", 0),
-                              e.data.value("x", 0.0), e.data.value("y", 0.0)));
+    if (e.type() != "touch_down" && e.type() != "touch_up" && e.type() != "touch_missed") continue;
+    out.push_back(fmt::format("{:.6f} {} {} {} {} {}", e.t, e.source, e.type(), e.data().value("finger", 0),
+                              e.data().value("x", 0.0), e.data().value("y", 0.0)));
   }
   return out;
 }
 
 int count_events(const EventLog& log, const std::string& source, const std::string& type) {
   int n = 0;
-  for (const auto& e : log.events()) n += e.source == source && e.type == type ? 1 : 0;
+  for (const auto& e : log.events()) n += e.source == source && e.type() == type ? 1 : 0;
   return n;
 }
 

@@ -46,8 +46,8 @@ TEST(Episode, ChildRobotEpisodeFollowsTheProtocolAndRecordsMetrics) {
   std::vector<std::string> stages;
   int moves = 0;
   for (const auto& e : r.events.events()) {
-    if (e.type == "stage") stages.push_back(e.data["stage"]);
-    if (e.source == "robot" && e.type == "move_goal") ++moves;
+    if (e.type() == "stage") stages.push_back(e.data()["stage"]);
+    if (e.source == "robot" && e.type() == "move_goal") ++moves;
   }
   EXPECT_EQ(stages, (std::vector<std::string>{"greeting", "tutorial", "freeplay", "debriefing"}));
   EXPECT_GT(moves, 5);
@@ -70,9 +70,9 @@ TEST(Episode, TheSocialPolicyNeverGrabsAnItemAChildHolds) {
     const auto r = run_episode(
         {.scenario = scenario("child-robot", "social", 400), .seed = seed, .models = models(), .stop = stop});
     for (const auto& e : r.events.events()) {
-      if (e.type != "item_grabbed" || e.data.value("holder", "") != "robot") continue;
+      if (e.type() != "item_grabbed" || e.data().value("holder", "") != "robot") continue;
       ++robot_grabs;
-      EXPECT_TRUE(e.data["shared_with"].empty()) << "seed " << seed << " t " << e.t << ": " << e.data.dump();
+      EXPECT_TRUE(e.data()["shared_with"].empty()) << "seed " << seed << " t " << e.t << ": " << e.data().dump();
     }
   }
   EXPECT_GT(robot_grabs, 0);

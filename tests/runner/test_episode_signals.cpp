@@ -52,10 +52,10 @@ TEST(EpisodeSignals, StageSignalsMoveTheProtocolOnAndGameSignalsReachTheGame) {
   bool stashed = false;
   double freeplay_at = -1.0;
   for (const auto& e : r.events.events()) {
-    if (e.source == "protocol" && e.type == "stage") stages.push_back(e.data["stage"]);
-    if (e.type == "stage" && e.data["stage"] == "freeplay") freeplay_at = e.t;
-    if (e.type == "signal_received") received.push_back(e.data["name"]);
-    if (e.type == "signal" && e.data["name"] == "items_to_stash") stashed = true;
+    if (e.source == "protocol" && e.type() == "stage") stages.push_back(e.data()["stage"]);
+    if (e.type() == "stage" && e.data()["stage"] == "freeplay") freeplay_at = e.t;
+    if (e.type() == "signal_received") received.push_back(e.data()["name"]);
+    if (e.type() == "signal" && e.data()["name"] == "items_to_stash") stashed = true;
   }
   EXPECT_EQ(stages, (std::vector<std::string>{"greeting", "freeplay", "debriefing"}));
   EXPECT_EQ(received, (std::vector<std::string>{"start_freeplay", "items_to_stash", "blank_interface"}));

@@ -150,12 +150,12 @@ TEST(EpisodeWebHooks, AnExternalRobotsSpeechIsTheRobotsSayHeardInTheRoom) {
       run_episode({.scenario = s, .seed = 5, .stop = stop, .id = "say", .robot = &speaker}, observed_by(observers));
   const Event* said = nullptr;
   for (const auto& e : r.events.events()) {
-    if (e.source == "robot" && e.type == "say" && e.data["text"] == "Shall we build a zoo together?") said = &e;
+    if (e.source == "robot" && e.type() == "say" && e.data()["text"] == "Shall we build a zoo together?") said = &e;
   }
   ASSERT_NE(said, nullptr);
-  EXPECT_EQ(said->data["to"], "purple");
+  EXPECT_EQ(said->data()["to"], "purple");
   const double duration = speech_duration_s("Shall we build a zoo together?");
-  EXPECT_DOUBLE_EQ(said->data["duration_s"].get<double>(), duration);
+  EXPECT_DOUBLE_EQ(said->data()["duration_s"].get<double>(), duration);
   int speaking = 0;
   for (const auto& t : ticks) {
     if (t.stage == "freeplay" && t.freeplay_t > 2.05 && t.freeplay_t < 2.0 + duration - 0.05) {

@@ -49,7 +49,7 @@ std::string grabbable_item(const Sandtray& tray, const std::string& except = {})
 bool has_event(const std::vector<Event>& events, const std::string& type, const std::string& key,
                const std::string& value) {
   for (const auto& e : events) {
-    if (e.type == type && e.data.contains(key) && e.data[key] == value) return true;
+    if (e.type() == type && e.data().contains(key) && e.data()[key] == value) return true;
   }
   return false;
 }
@@ -205,7 +205,7 @@ TEST(Sandtray, RobotFingerReleasesExactlyOneSecondAfterTheLastPose) {
   events = tray->drain_events();
   ASSERT_TRUE(has_event(events, "interaction_event", "message", "releasing_" + name));
   for (const auto& e : events) {
-    if (e.type == "interaction_event") {
+    if (e.type() == "interaction_event") {
       EXPECT_NEAR(e.t, last_pose_time + 1.0, 1e-9);
     }
   }
@@ -245,7 +245,7 @@ TEST(Sandtray, ChildGrabbingTheRobotsItemSharesItUntilTheRobotLetsGo) {
   ASSERT_EQ(tray->touch_down(4, p), TouchOutcome::GrabbedItem);
   auto events = tray->drain_events();
   ASSERT_EQ(events.size(), 1U);
-  EXPECT_EQ(events[0].data["shared_with"][0], "robot");
+  EXPECT_EQ(events[0].data()["shared_with"][0], "robot");
   const auto holders = tray->item(name).holders;
   ASSERT_EQ(holders.size(), 2U);
   EXPECT_EQ(holders[0], (Holder{Holder::Kind::Finger, 4}));

@@ -83,8 +83,8 @@ TEST(WebComponents, ProtocolButtonsMoveTheServedEpisodesStages) {
   std::vector<std::string> stages;
   std::vector<std::string> received;
   for (const auto& e : report.result.events.events()) {
-    if (e.source == "protocol" && e.type == "stage") stages.push_back(e.data["stage"]);
-    if (e.source == "protocol" && e.type == "signal_received") received.push_back(e.data["name"]);
+    if (e.source == "protocol" && e.type() == "stage") stages.push_back(e.data()["stage"]);
+    if (e.source == "protocol" && e.type() == "signal_received") received.push_back(e.data()["name"]);
   }
   EXPECT_EQ(stages, (std::vector<std::string>{"greeting", "tutorial", "freeplay", "debriefing"}));
   EXPECT_EQ(received, (std::vector<std::string>{"start_tutorial", "start_freeplay", "blank_interface"}));
@@ -142,11 +142,11 @@ TEST(WebComponents, WizardSpeechIsTheRobotsAndTheRecorderAndRobotSideSwitch) {
   // The wizard's words are the robot's own speech in the episode's log.
   const Event* said = nullptr;
   for (const auto& e : report.result.events.events()) {
-    if (e.source == "robot" && e.type == "say" && e.data["text"] == "Hello from the wizard") said = &e;
+    if (e.source == "robot" && e.type() == "say" && e.data()["text"] == "Hello from the wizard") said = &e;
   }
   ASSERT_NE(said, nullptr);
-  EXPECT_EQ(said->data["to"], "purple");
-  EXPECT_GT(said->data["duration_s"].get<double>(), 0.5);
+  EXPECT_EQ(said->data()["to"], "purple");
+  EXPECT_GT(said->data()["duration_s"].get<double>(), 0.5);
 
   // The page saw the components switch.
   {

@@ -112,15 +112,15 @@ TEST(WizardSource, AWizardMoveGoesThroughThePlannerAndTheExecutorToTheDropPoint)
   });
   const auto results = of_type(r.log, "wizard", "move_result");
   ASSERT_EQ(results.size(), 1u);
-  EXPECT_EQ(results[0].data["status"], "succeeded");
+  EXPECT_EQ(results[0].data()["status"], "succeeded");
   // The move is the episode's robot side's (the one move driver): its goal and result are the robot's events.
   const auto goals = of_type(r.result.events.events(), "robot", "move_goal");
   const auto ends = of_type(r.result.events.events(), "robot", "move_result");
   ASSERT_EQ(goals.size(), 1u);
   ASSERT_EQ(ends.size(), 1u);
-  EXPECT_EQ(goals[0].data["item"], "zebra");
-  EXPECT_EQ(ends[0].data["status"], "succeeded");
-  EXPECT_GT(ends[0].data["poses"].get<int>(), 0);
+  EXPECT_EQ(goals[0].data()["item"], "zebra");
+  EXPECT_EQ(ends[0].data()["status"], "succeeded");
+  EXPECT_GT(ends[0].data()["poses"].get<int>(), 0);
   EXPECT_EQ(of_type(r.log, "policy", "robot_action").size(), 0u);  // the policy does not act in wizard mode
   EXPECT_NEAR(r.zebra.x, 0.3, 0.01);
   EXPECT_NEAR(r.zebra.y, -0.1, 0.01);
@@ -146,8 +146,8 @@ TEST(WizardSource, SupervisedProposalsExecuteAfterTheTimeoutUnlessVetoed) {
   const auto decisions = of_type(timed_out.log, "sparc", "decision");
   ASSERT_GE(proposals.size(), 1u);
   ASSERT_GE(decisions.size(), 1u);
-  EXPECT_EQ(decisions[0].data["decision"], "timeout_executed");
-  EXPECT_NEAR(decisions[0].data["latency_s"].get<double>(), 2.0, 1e-6);
+  EXPECT_EQ(decisions[0].data()["decision"], "timeout_executed");
+  EXPECT_NEAR(decisions[0].data()["latency_s"].get<double>(), 2.0, 1e-6);
   EXPECT_GE(of_type(timed_out.log, "policy", "robot_action").size(), 1u);
 
   // The wizard vetoes every proposal as soon as it appears: the policy never acts.
@@ -156,9 +156,9 @@ TEST(WizardSource, SupervisedProposalsExecuteAfterTheTimeoutUnlessVetoed) {
   });
   const auto vetoes = of_type(vetoed.log, "sparc", "decision");
   ASSERT_GE(vetoes.size(), 1u);
-  for (const auto& d : vetoes) EXPECT_EQ(d.data["decision"], "vetoed");
+  for (const auto& d : vetoes) EXPECT_EQ(d.data()["decision"], "vetoed");
   EXPECT_EQ(of_type(vetoed.log, "policy", "robot_action").size(), 0u);
-  EXPECT_LT(vetoes[0].data["latency_s"].get<double>(), 0.25);
+  EXPECT_LT(vetoes[0].data()["latency_s"].get<double>(), 0.25);
 }
 
 TEST(WizardSource, AWebSessionPolicyThatPerceivesChildrenGetsThemInItsObservation) {
@@ -173,6 +173,6 @@ TEST(WizardSource, TheWizardsWordsAreSaidByTheOneRobotSide) {
   const auto r = run(RobotMode::Wizard, {R"({"type":"say","text":"Hi there","to":"purple"})"});
   const auto said = of_type(r.result.events.events(), "robot", "say");
   ASSERT_GE(said.size(), 2u);  // the greeting and the wizard's words, through the robot side
-  EXPECT_EQ(said.back().data["text"], "Hi there");
+  EXPECT_EQ(said.back().data()["text"], "Hi there");
   EXPECT_EQ(of_type(r.log, "wizard", "robot_action").size(), 1u);
 }

@@ -5,19 +5,40 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
+#include "freeplay/core/events.hpp"
 #include "freeplay/core/rng.hpp"
 
 namespace freeplay {
 
-/// One event: simulated time, emitting component, type (e.g. `releasing_zebra`) and free-form data.
+/// One event: simulated time, emitting component and what happened, typed (events.hpp: its type, e.g.
+/// `interaction_event`, and its fields).
 struct Event {
-  double t = 0.0;            ///< simulated seconds since the episode started
-  std::string source;        ///< e.g. "sandtray", "child.purple", "robot"
-  std::string type;          ///< e.g. "item_grabbed", "interaction_event", "stroke_finished"
-  nlohmann::json data;       ///< event-specific fields (object or null)
+  double t = 0.0;                 ///< simulated seconds since the episode started
+  std::string source;             ///< e.g. "sandtray", "child.purple", "robot"
+  events::EventPayload payload;   ///< what happened
 
+  /// An empty event (an `other` event with no type).
+  Event() : payload(events::Other{}) {}
+  /// An event carrying `payload`.
+  Event(double at, std::string from, events::EventPayload what)
+      : t(at), source(std::move(from)), payload(std::move(what)) {}
+  /// An event of `type` with `data`, typed when its type and data are one of events.hpp's (events::payload_of).
+  Event(double at, std::string from, std::string_view type, nlohmann::json data)
+      : t(at), source(std::move(from)), payload(events::payload_of(type, std::move(data))) {}
+
+  /// Its type, e.g. "item_grabbed".
+  std::string_view type() const { return events::type_of(payload); }
+  /// Its fields as the event log writes them (object or null).
+  nlohmann::json data() const { return events::data_of(payload); }
+  /// Its payload if it is a `T` (e.g. events::InteractionEvent), else null.
+  template <class T>
+  const T* get() const {
+    return std::get_if<T>(&payload);
+  }
   /// The event as one JSON object {t, source, type, data}.
   nlohmann::json to_json() const;
 };

@@ -4,6 +4,7 @@
 
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -52,10 +53,10 @@ class EpisodeMetrics {
     double last_move_t = -1e9;
   };
 
-  std::string mover_of(const nlohmann::json& data) const;
+  std::string mover_of(const std::optional<int>& finger) const;
   void on_robot_event(const Event& e, double t);
-  void on_grab(const nlohmann::json& data, double t, const MetricsWorld& world);
-  void on_release(const nlohmann::json& data, double t, const MetricsWorld& world);
+  void on_grab(const events::ItemGrabbed& grab, double t, const MetricsWorld& world);
+  void on_release(const events::ItemReleased& release, double t, const MetricsWorld& world);
 
   bool child_robot_;
   std::vector<std::string> seats_;
