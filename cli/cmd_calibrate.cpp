@@ -31,8 +31,7 @@ struct CalibrateOptions {
   bool json = false;
   bool fit = false;
   int threads = 1;
-  int rounds = 3;
-  int evaluations = 60;
+  int rounds = 4;
   int fit_sessions = 120;
   bool full = false;
   bool check = false;
@@ -105,7 +104,6 @@ void run_calibrate(const CalibrateOptions& o) {
     fit.sessions = o.fit_sessions;
     fit.seed = o.seed;
     fit.rounds = o.rounds;
-    fit.duration_evaluations = o.evaluations;
     fit.threads = o.threads;
     fit.log = [](const std::string& line) { spdlog::info("fit: {}", line); };
     const agents::FitResult result = agents::fit_child_model(params, fit);
@@ -113,9 +111,10 @@ void run_calibrate(const CalibrateOptions& o) {
     const std::filesystem::path out = o.output.empty() ? params_path : std::filesystem::path(o.output);
     const std::string header = fmt::format(
         "Synthetic child model (freeplay::agents), fitted by `freeplay calibrate --fit` (seed {}, {} sessions per\n"
-        "condition per evaluation, {} rounds). Duration loss {:.3f} -> {:.3f}; label loss {:.3f} -> {:.3f}.",
-        o.seed, o.fit_sessions, o.rounds, result.duration_loss_before, result.duration_loss_after,
-        result.label_loss_before, result.label_loss_after);
+        "condition per evaluation, {} rounds of the coordinate search). Fit loss {:.2f} -> {:.2f}; checked rows\n"
+        "outside their bands on the fit seed {} -> {}.",
+        o.seed, o.fit_sessions, o.rounds, result.loss_before, result.loss_after, result.outside_before,
+        result.outside_after);
     write_file_atomically(out, agents::child_model_params_to_yaml(params, header));
     spdlog::info("wrote fitted parameters to {}", out.string());
   }
@@ -205,8 +204,7 @@ const RegisterCommand kRegister(60, [](CLI::App& program) {
   cmd->add_flag("--json", options->json, "Print JSON instead of a table");
   cmd->add_flag("--fit", options->fit, "Run the fitting procedure first and write the fitted parameters");
   cmd->add_option("--output", options->output, "Where --fit writes (default: the --params file)");
-  cmd->add_option("--rounds", options->rounds, "Fit: outer rounds")->capture_default_str();
-  cmd->add_option("--evaluations", options->evaluations, "Fit: Nelder–Mead evaluations per round")
+  cmd->add_option("--rounds", options->rounds, "Fit: sweeps of the coordinate search over the fitted parameters")
       ->capture_default_str();
   cmd->add_option("--fit-sessions", options->fit_sessions, "Fit: sessions per condition per evaluation")
       ->capture_default_str();
