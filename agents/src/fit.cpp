@@ -6,8 +6,10 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "freeplay/agents/calibration.hpp"
+#include "freeplay/core/error.hpp"
 
 namespace freeplay::agents {
 namespace {
@@ -71,6 +73,7 @@ std::vector<Fitted> fitted_parameters() {
   FREEPLAY_FITTED(drives.partner_quit_factor, Log, 1.0, 200.0);
   FREEPLAY_FITTED(drives.contingency_gain, Log, 0.001, 2.0);
   FREEPLAY_FITTED(drives.unanswered_bid_drop, Log, 0.001, 2.0);
+  FREEPLAY_FITTED(drives.novelty_gain_per_min, Log, 0.001, 1.0);
   FREEPLAY_FITTED(partnership.reciprocity_window_s, Log, 3.0, 120.0);
   FREEPLAY_FITTED(partnership.join_probability, Logit, 0.01, 1.0);
   FREEPLAY_FITTED(partnership.expectation_exponent, Log, 0.1, 4.0);
@@ -134,9 +137,27 @@ double fit_loss(const std::vector<ComparisonRow>& rows, int* outside) {
   return loss;
 }
 
+std::vector<std::string> fit_parameter_names() {
+  std::vector<std::string> names;
+  for (const Fitted& f : fitted_parameters()) names.push_back(f.name);
+  return names;
+}
+
 FitResult fit_child_model(const ChildModelParams& start, const FitOptions& options) {
   FitResult result;
-  const std::vector<Fitted> fitted = fitted_parameters();
+  std::vector<Fitted> fitted = fitted_parameters();
+  if (!options.only.empty()) {
+    const std::vector<std::string> all = fit_parameter_names();
+    for (const std::string& name : options.only) {
+      if (std::find(all.begin(), all.end(), name) == all.end()) {
+        throw InputError(fmt::format("'{}' is not a fitted parameter", name), "--fit-only",
+                         fmt::format("{}", fmt::join(all, ", ")));
+      }
+    }
+    std::erase_if(fitted, [&](const Fitted& f) {
+      return std::find(options.only.begin(), options.only.end(), f.name) == options.only.end();
+    });
+  }
   const auto log = [&](const std::string& line) {
     if (options.log) options.log(line);
   };
@@ -147,6 +168,10 @@ FitResult fit_child_model(const ChildModelParams& start, const FitOptions& optio
   };
   const auto evaluate = [&](const ChildModelParams& p, int& outside) {
     result.simulations += 2 * options.sessions;
+    if (options.simulate) {
+      const auto [cc, cr] = options.simulate(p);
+      return fit_loss(compare_with_targets(&cc, &cr), &outside);
+    }
     const PopulationStats cc = summarise(
         simulate_population(p, Condition::ChildChild, options.sessions, options.seed, options.threads),
         Condition::ChildChild);

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "freeplay/agents/params.hpp"
@@ -88,6 +89,11 @@ struct FitOptions {
   int rounds = 4;                ///< sweeps of the coordinate search over every fitted parameter
   int threads = 1;               ///< worker threads for the simulations
   std::function<void(const std::string&)> log;  ///< progress lines (may be empty)
+  /// Names of the fitted parameters to move (as fit_parameter_names() spells them); empty: all of them.
+  std::vector<std::string> only;
+  /// Simulates both conditions with the given parameters (the child-child and the child-robot population); empty:
+  /// the logic-only simulator with `sessions`, `seed` and `threads`. The full episode loop plugs in here.
+  std::function<std::pair<PopulationStats, PopulationStats>(const ChildModelParams&)> simulate;
 };
 
 /// Outcome of a fit.
@@ -111,5 +117,8 @@ double fit_loss(const std::vector<ComparisonRow>& rows, int* outside = nullptr);
 /// the three axes and the drive, partnership and expression parameters listed in fit.cpp, minimising fit_loss with
 /// common random numbers (the same seeds for every evaluation).
 FitResult fit_child_model(const ChildModelParams& start, const FitOptions& options);
+
+/// The names of every parameter the fit may move, in the order it moves them (for `FitOptions::only`).
+std::vector<std::string> fit_parameter_names();
 
 }  // namespace freeplay::agents
