@@ -797,7 +797,10 @@ void ChildAgent::answer_partner(double t, ChildActions& out) {
   gaze_ = GazeTarget{};
   gaze_.kind = partner_robot_ ? GazeKind::Robot : GazeKind::PartnerFace;
   next_glance_t_ = t + rng_.lognormal(std::log(params_->expression.glance_median_s), params_->expression.glance_sigma);
-  if (answer_.spoken && t >= speaking_until_) say(Utterance::Comment, Addressee::Partner, out, t);
+  // Out of the game, quieter: a child that stopped playing answers in words as seldom as it speaks unprompted (by
+  // the scheme, chatting about unrelated matters is aimless; a child out of the game and not chatting is no play).
+  const bool replies = labels_.task != TaskEngagement::NoPlay || rng_.bernoulli(params_->expression.noplay_speech_share);
+  if (answer_.spoken && t >= speaking_until_ && replies) say(Utterance::Comment, Addressee::Partner, out, t);
   // Taking up a joint bid joins the partner's joint play (a proposal or a joint act: cooperation).
   const bool together = labels_.social == SocialEngagement::Associative ||
                         labels_.social == SocialEngagement::Cooperative;
@@ -820,9 +823,11 @@ void ChildAgent::sustain_joint_play(double t) {
     ++counters_.joint_play_lapses;
     // Joint play winds down a step at a time: cooperation without answers falls back to talking about the play
     // (which lapses in turn when that goes unanswered too), talk to play side by side or alone.
-    const auto next = labels_.social == SocialEngagement::Cooperative ? SocialEngagement::Associative
-                      : partner_playing                               ? SocialEngagement::Parallel
-                                                                      : SocialEngagement::Solitary;
+    const bool keep_talking = labels_.social == SocialEngagement::Cooperative &&
+                              rng_.bernoulli(contingency_.link_probability());
+    const auto next = keep_talking       ? SocialEngagement::Associative
+                      : partner_playing ? SocialEngagement::Parallel
+                                        : SocialEngagement::Solitary;
     switch_label(Axis::SocialEngagement, static_cast<std::size_t>(next), t);
   } else if (labels_.social == SocialEngagement::Onlooker) {
     const double watch = params_->partnership.watch_window_s;

@@ -318,6 +318,24 @@ SocialEngagement PairCoder::candidate(double t, int who) const {
   return SocialEngagement::Solitary;
 }
 
+SocialEngagement PairCoder::joins_in(double t, int who, SocialEngagement mine, SocialEngagement theirs) const {
+  // "The child itself initiates or responds to interaction": when the other child's own behaviour is joint play
+  // with me, my own response to it is that play too. Only the other's own evidence counts (not a label it got from
+  // me), so two children cannot hold each other in it; the robot is not coded, so with a robot this never applies.
+  const Track& me = tracks_[static_cast<std::size_t>(who)];
+  if (mine == SocialEngagement::Cooperative) return mine;
+  // Cooperative: my own acts follow the cooperating partner's (its shared scene) within the window.
+  if (theirs == SocialEngagement::Cooperative && me.follows.since(t - params_.cooperation_window_s) >= 1) {
+    return SocialEngagement::Cooperative;
+  }
+  // Associative: I answer in words a partner engaged in play with me (a glance alone is no answer).
+  const bool answers = me.interaction.since(t - params_.interaction_window_s) >= 1;
+  if (answers && (theirs == SocialEngagement::Associative || theirs == SocialEngagement::Cooperative)) {
+    return SocialEngagement::Associative;
+  }
+  return mine;
+}
+
 void PairCoder::code(double t, int who, Axis axis, std::uint8_t label) {
   Coded& c = coded_[static_cast<std::size_t>(who)][static_cast<std::size_t>(axis)];
   if (label == c.label) {
@@ -364,9 +382,13 @@ void PairCoder::observe(double t, const ObservedPlayer& first, const ObservedPla
   track(t, dt, 0, first);
   track(t, dt, 1, second);
   const int players = second_is_robot_ ? 1 : 2;
+  const std::array<SocialEngagement, 2> own = {candidate(t, 0),
+                                               second_is_robot_ ? SocialEngagement::Solitary : candidate(t, 1)};
   for (int who = 0; who < players; ++who) {
     code(t, who, Axis::TaskEngagement, static_cast<std::uint8_t>(task_candidate(t, who)));
-    code(t, who, Axis::SocialEngagement, static_cast<std::uint8_t>(candidate(t, who)));
+    code(t, who, Axis::SocialEngagement,
+         static_cast<std::uint8_t>(joins_in(t, who, own[static_cast<std::size_t>(who)],
+                                            own[static_cast<std::size_t>(1 - who)])));
     code(t, who, Axis::SocialAttitude, static_cast<std::uint8_t>(attitude_candidate(t, who)));
   }
 }

@@ -481,6 +481,23 @@ Vignette child_shares_with_robot() {
           {mostly(kPurple, Associative, 12, 70), never(kPurple, Cooperative, 12, 70)}};
 }
 
+Vignette peer_answers_in_words() {
+  return {"ChildAnswersAPeerTalkingAboutThePlayInWords",
+          "the purple child arranges its animals and talks to the yellow child about the play every 6 s; yellow "
+          "draws on its side and answers in a word every third remark, looking up ('yes!'): each keeps to its own "
+          "scene, both talk about the play",
+          sentences({scheme::kAssociative, scheme::kResponds}),
+          false, 80.0,
+          [](Script& s) {
+            arrange(s.purple(), {"lion", "zebra", "elephant"}, kPurpleArea, 1.0, 79.0);
+            s.purple().say(Comment, 1.2).every(6.0, 3.0, 80.0);
+            draw_strokes(s.yellow(), Blue, kSecondArea, 1.0, 80.0, 4.0, 2.5);
+            s.yellow().say(Comment, 0.8).every(18.0, 4.6, 80.0);
+          },
+          {mostly(kPurple, Associative, 15, 80), mostly(kYellow, Associative, 15, 80),
+           never(kYellow, Cooperative, 15, 80)}};
+}
+
 std::vector<Vignette> social_vignettes() {
   return {robot_says_wow_on_a_timer(),
           timetable_mover_robot(),
@@ -506,7 +523,8 @@ std::vector<Vignette> social_vignettes() {
           river_and_animals(),
           child_glances_back_at_peer(),
           child_and_robot_discuss(),
-          child_shares_with_robot()};
+          child_shares_with_robot(),
+          peer_answers_in_words()};
 }
 
 }  // namespace

@@ -211,6 +211,10 @@ inline constexpr std::string_view kDiscussing =
     "paper: 'the two children discuss what to do next: this sequence is annotated as a cooperative behaviour'";
 /// Social engagement: the partner's acts alone do not code the child.
 inline constexpr std::string_view kNotMe = "the partner's act near my item does not make ME cooperative";
+/// Social engagement: a child's answer to a partner engaged in associative play with it is part of that play.
+inline constexpr std::string_view kResponds =
+    "associative: 'the child itself initiates or RESPONDS to interaction about the play' (issue 27's reading of "
+    "Parten): answering in words a partner that talks about the play";
 /// Social engagement: a returned glance is not play.
 inline constexpr std::string_view kGlance = "a glance that answers a comment is not associative play";
 /// Task engagement: goal oriented.

@@ -133,6 +133,8 @@ class PairCoder {
   static bool on_own_half(int who, const Vec2& point);
   bool plays(double t, int who, double window) const;
   SocialEngagement candidate(double t, int who) const;
+  /// The pair rule: `who`'s social label given its own (`mine`) and the other's own (`theirs`) evidence.
+  SocialEngagement joins_in(double t, int who, SocialEngagement mine, SocialEngagement theirs) const;
   TaskEngagement task_candidate(double t, int who) const;
   SocialAttitude attitude_candidate(double t, int who) const;
   void code(double t, int who, Axis axis, std::uint8_t label);

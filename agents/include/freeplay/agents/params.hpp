@@ -101,7 +101,7 @@ struct ExpressionParams {
   double robot_novelty_face_share = 0.3;            ///< extra P(look at a robot partner) at t = 0, wearing off with
                                                     ///< novelty (Kanda et al. 2004; Tanaka et al. 2007)
   double noplay_watch_share = 0.5;                  ///< P(a child out of the game watches where the partner just played)
-  double noplay_speech_share = 1.0;                 ///< a child out of the game talks to its partner at this share of its rate
+  double noplay_speech_share = 1.0;                 ///< a child out of the game talks to (and answers) its partner at this share of its rate
   double syllables_mean = 6.0;                      ///< mean syllables per utterance
   double articulation_rate_at_3 = 2.7;              ///< syllables/s at 3 years
   double articulation_rate_per_year = 0.12;         ///< increase per year (3.3 at 8 years)
