@@ -66,7 +66,7 @@ class Feed final : public runner::EpisodeObserver {
 std::vector<Event> of_type(const std::vector<Event>& events, const std::string& source, const std::string& type) {
   std::vector<Event> out;
   for (const auto& e : events) {
-    if (e.source == source && e.type == type) out.push_back(e);
+    if (e.source == source && e.type() == type) out.push_back(e);
   }
   return out;
 }
