@@ -13,6 +13,8 @@
 #include "freeplay/runner/suite_runner.hpp"
 #include "freeplay/results/run_folder.hpp"
 
+#include "../scratch_dir.hpp"
+
 namespace freeplay::analysis::testing {
 
 /// How to make one synthetic variant.
@@ -69,10 +71,7 @@ inline void write_synthetic_run(const std::filesystem::path& dir, const std::vec
 
 /// A fresh, empty temporary folder for one test.
 inline std::filesystem::path fresh_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("freeplay-analysis-test-" + name);
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
+  return test_support::fresh_dir("analysis-" + name);
 }
 
 }  // namespace freeplay::analysis::testing

@@ -7,18 +7,15 @@
 #include "freeplay/core/error.hpp"
 #include "freeplay/results/run_folder.hpp"
 #include "freeplay/results/summary.hpp"
+#include "../scratch_dir.hpp"
 
 using namespace freeplay;
 using namespace freeplay::results;
 
 namespace {
 
-std::filesystem::path fresh_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("freeplay_test_" + name);
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
+/// A scratch folder for this file's test `name`.
+std::filesystem::path fresh_dir(const std::string& name) { return test_support::fresh_dir("results-" + name); }
 
 }  // namespace
 

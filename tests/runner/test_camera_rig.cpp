@@ -14,6 +14,7 @@
 #include "freeplay/runner/episode_capture.hpp"
 #include "freeplay/runner/video_writer.hpp"
 #include "freeplay/sim/sandtray.hpp"
+#include "../scratch_dir.hpp"
 
 using namespace freeplay;
 using namespace freeplay::runner;
@@ -73,12 +74,8 @@ struct StopAfter final : EpisodeObserver {
   int left_;
 };
 
-std::filesystem::path fresh_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("freeplay_test_cameras_" + name);
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
+/// A scratch folder for this file's test `name`.
+std::filesystem::path fresh_dir(const std::string& name) { return test_support::fresh_dir("cameras-" + name); }
 
 stage::RendererOptions osmesa() {
   stage::RendererOptions options;

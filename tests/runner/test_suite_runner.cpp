@@ -9,18 +9,15 @@
 #include "freeplay/core/rng.hpp"
 #include "freeplay/runner/suite_runner.hpp"
 #include "freeplay/results/run_folder.hpp"
+#include "../scratch_dir.hpp"
 
 using namespace freeplay;
 using namespace freeplay::runner;
 
 namespace {
 
-std::filesystem::path fresh_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("freeplay_test_" + name);
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
+/// A scratch folder for this file's test `name`.
+std::filesystem::path fresh_dir(const std::string& name) { return test_support::fresh_dir("suite_runner-" + name); }
 
 Suite two_variant_suite(const std::filesystem::path& dir) {
   write_file_atomically(dir / "cc.yaml", "name: cc\ncondition: child-child\nepisodes: 7\nseed: 3\n");

@@ -15,6 +15,7 @@
 #include "freeplay/runner/suite.hpp"
 #include "freeplay/runner/suite_runner.hpp"
 #include "freeplay/results/run_folder.hpp"
+#include "../scratch_dir.hpp"
 
 using namespace freeplay;
 using namespace freeplay::runner;
@@ -24,12 +25,8 @@ namespace {
 
 constexpr int kEpisodes = 3;
 
-fs::path fresh_dir(const std::string& name) {
-  const auto dir = fs::temp_directory_path() / ("freeplay_test_yoked_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+/// A scratch folder for this file's test `name`.
+std::filesystem::path fresh_dir(const std::string& name) { return test_support::fresh_dir("yoked-" + name); }
 
 /// A short child-robot scenario file with `policy` and `params` (YAML flow map).
 fs::path scenario_file(const fs::path& dir, const std::string& name, const std::string& policy,
