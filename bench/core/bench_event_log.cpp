@@ -9,8 +9,10 @@ namespace {
 using freeplay::Event;
 using freeplay::EventLog;
 
-// One event of a typical episode (a stroke point), appended to a log of 3 000 events (≈ a 20-minute episode).
-void BM_EventLogEmit(benchmark::State& state) {
+// Appends the event `make(n)` makes for the n-th iteration to a log restarted every 3 000 events (≈ a 20-minute
+// episode), the restart untimed.
+template <typename MakeEvent>
+void emit_into_episode_logs(benchmark::State& state, MakeEvent make) {
   EventLog log;
   int n = 0;
   for (auto _ : state) {
@@ -19,25 +21,24 @@ void BM_EventLogEmit(benchmark::State& state) {
       log = EventLog{};
       state.ResumeTiming();
     }
-    log.emit(Event{0.1 * n, "child.purple", "stroke_point", {{"x", 0.123456789 * n}, {"y", -0.2}, {"colour", "blue"}}});
+    log.emit(make(n));
   }
   benchmark::DoNotOptimize(log.hash());
+}
+
+// One event of a typical episode (a stroke point), written as a string-typed event.
+void BM_EventLogEmit(benchmark::State& state) {
+  emit_into_episode_logs(state, [](int n) {
+    return Event{0.1 * n, "child.purple", "stroke_point", {{"x", 0.123456789 * n}, {"y", -0.2}, {"colour", "blue"}}};
+  });
 }
 BENCHMARK(BM_EventLogEmit);
 
 // The same with a typed event of the episode (a child's touch, as SimWorld emits it).
 void BM_EventLogEmitTyped(benchmark::State& state) {
-  EventLog log;
-  int n = 0;
-  for (auto _ : state) {
-    if (n++ % 3000 == 0) {
-      state.PauseTiming();
-      log = EventLog{};
-      state.ResumeTiming();
-    }
-    log.emit(Event{0.1 * n, "child.purple", freeplay::events::TouchDown{1, 0.123456789 * n, -0.2, "stroke"}});
-  }
-  benchmark::DoNotOptimize(log.hash());
+  emit_into_episode_logs(state, [](int n) {
+    return Event{0.1 * n, "child.purple", freeplay::events::TouchDown{1, 0.123456789 * n, -0.2, "stroke"}};
+  });
 }
 BENCHMARK(BM_EventLogEmitTyped);
 
