@@ -140,17 +140,7 @@ ObserverSwitch& LiveEpisode::attach(EpisodeObserver& observer, bool on, Observer
 
 EpisodeResult LiveEpisode::run(const EpisodeInputs& inputs) {
   if (outside_stop_.load()) stop_ = true;
-  EpisodeInputs live{.scenario = inputs.scenario,
-                     .seed = inputs.seed,
-                     .models = inputs.models,
-                     .stop = stop_,
-                     .id = inputs.id,
-                     .episode_index = inputs.episode_index,
-                     .children = inputs.children,
-                     .decisions = inputs.decisions,
-                     .robot = inputs.robot,
-                     .signals = inputs.signals};
-  return run_episode(live, {.observers = {ticks_.get()}});
+  return run_episode(inputs.stopped_by(stop_), {.observers = {ticks_.get()}});
 }
 
 PacingTiming LiveEpisode::timing() const {

@@ -45,7 +45,7 @@ class SandtrayMetricsWorld final : public results::MetricsWorld {
   const sim::Sandtray& tray_;
 };
 
-inline constexpr double kTickS = 0.1;  ///< the game's 10 Hz tick
+inline constexpr double kTickS = kMoveTickS;  ///< the game's 10 Hz tick: one step of a driven move
 
 /// One seated child: its agent and finger bookkeeping.
 struct ChildSlot {

@@ -78,6 +78,20 @@ struct EpisodeInputs {
 
   /// The identity its observers see.
   EpisodeInfo info() const { return {&scenario, id, seed, episode_index}; }
+  /// The same inputs, stopped by `other` instead (a live front's own stop); every field but `stop` is copied here,
+  /// next to the fields, so a new field is not dropped.
+  EpisodeInputs stopped_by(const std::atomic<bool>& other) const {
+    return {.scenario = scenario,
+            .seed = seed,
+            .models = models,
+            .stop = other,
+            .id = id,
+            .episode_index = episode_index,
+            .children = children,
+            .decisions = decisions,
+            .robot = robot,
+            .signals = signals};
+  }
 };
 
 /// Where an episode's ticks go while it runs: observers that see every 10 Hz tick of every stage (cameras,
