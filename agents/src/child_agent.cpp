@@ -812,6 +812,31 @@ void ChildAgent::answer_partner(double t, ChildActions& out) {
   }
 }
 
+std::size_t ChildAgent::lapse_destination(bool partner_playing) {
+  // Joint play winds down along the children's own exits from it (PInSoRo's transitions out of the current label),
+  // never up: cooperation without answers may fall back to talking about the play, but only with a partner I
+  // believe answers at all (there is nobody to go on talking with otherwise); watching the partner or playing
+  // side by side needs a partner who plays.
+  const AxisModel& m = params_->axis(Axis::SocialEngagement);
+  const auto current = static_cast<std::size_t>(labels_.social);
+  std::array<double, kMaxLabels> w{};
+  w[static_cast<std::size_t>(SocialEngagement::Solitary)] = 1.0;
+  w[static_cast<std::size_t>(SocialEngagement::Onlooker)] = partner_playing ? 1.0 : 0.0;
+  w[static_cast<std::size_t>(SocialEngagement::Parallel)] = partner_playing ? 1.0 : 0.0;
+  w[static_cast<std::size_t>(SocialEngagement::Associative)] =
+      labels_.social == SocialEngagement::Cooperative ? contingency_.link_probability() : 0.0;
+  double total = 0.0;
+  for (std::size_t j = 0; j < label_count(Axis::SocialEngagement); ++j) {
+    w[j] = j == current ? 0.0 : w[j] * m.transition[current][j];
+    total += w[j];
+  }
+  double u = rng_.uniform() * total;
+  for (std::size_t j = 0; j < label_count(Axis::SocialEngagement); ++j) {
+    if (w[j] > 0.0 && (u -= w[j]) < 0.0) return j;
+  }
+  return static_cast<std::size_t>(SocialEngagement::Solitary);
+}
+
 void ChildAgent::sustain_joint_play(double t) {
   const auto s = static_cast<std::size_t>(Axis::SocialEngagement);
   const bool partner_playing = t - partner_last_touch_t_ < params_->coder.active_window_s;
@@ -821,14 +846,7 @@ void ChildAgent::sustain_joint_play(double t) {
     const double patience = reciprocity_window() * contingency_.link_probability();
     if (t - std::max(last_answered_t_, bout_start_[s]) <= patience) return;
     ++counters_.joint_play_lapses;
-    // Joint play winds down a step at a time: cooperation without answers falls back to talking about the play
-    // (which lapses in turn when that goes unanswered too), talk to play side by side or alone.
-    const bool keep_talking = labels_.social == SocialEngagement::Cooperative &&
-                              rng_.bernoulli(contingency_.link_probability());
-    const auto next = keep_talking       ? SocialEngagement::Associative
-                      : partner_playing ? SocialEngagement::Parallel
-                                        : SocialEngagement::Solitary;
-    switch_label(Axis::SocialEngagement, static_cast<std::size_t>(next), t);
+    switch_label(Axis::SocialEngagement, lapse_destination(partner_playing), t);
   } else if (labels_.social == SocialEngagement::Onlooker) {
     const double watch = params_->partnership.watch_window_s;
     if (t - bout_start_[s] > watch && t - partner_last_touch_t_ > watch) {

@@ -70,6 +70,7 @@ std::vector<Fitted> fitted_parameters() {
   FREEPLAY_FITTED(drives.decay_per_min, Log, 0.01, 5.0);
   FREEPLAY_FITTED(drives.boredom_rate_per_min, Log, 0.001, 2.0);
   FREEPLAY_FITTED(drives.quit_hazard_per_min, Log, 1e-4, 1.0);
+  FREEPLAY_FITTED(drives.quit_motivation_slope, Log, 0.1, 10.0);
   FREEPLAY_FITTED(drives.partner_quit_factor, Log, 1.0, 200.0);
   FREEPLAY_FITTED(drives.contingency_gain, Log, 0.001, 2.0);
   FREEPLAY_FITTED(drives.unanswered_bid_drop, Log, 0.001, 2.0);

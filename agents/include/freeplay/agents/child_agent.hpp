@@ -110,6 +110,8 @@ class ChildAgent {
   double bid_scale() const;
   double reciprocity_window() const;
   void sustain_joint_play(double t);
+  /// Where joint play that lapsed for want of answers goes (the children's exits from it, never up).
+  std::size_t lapse_destination(bool partner_playing);
   double reach_depth() const;
   bool reachable(const Vec2& p) const;
   Vec2 clamp_reachable(const Vec2& p) const;
