@@ -37,7 +37,7 @@ namespace {
 
 using stage::kNaoJointCount;
 using stage::NaoJointVector;
-using Target = ControllerTarget;
+using Target = scenario::ControllerTarget;
 
 constexpr double kPhysicsDtS = 0.002;      // the stage's MuJoCo timestep
 constexpr int kControlSteps = 10;          // 20 ms control cycle (ALMotion's DCM/motion cycle)
@@ -81,7 +81,7 @@ double max_of(const std::vector<double>& v) {
 /// One controller episode: owns the stage, the Nao controller, a sandtray for item moves and the metrics.
 class ControllerEpisode {
  public:
-  ControllerEpisode(const Scenario& scenario, std::uint64_t seed, const SharedModels& models)
+  ControllerEpisode(const scenario::Scenario& scenario, std::uint64_t seed, const SharedModels& models)
       : scenario_(scenario), spec_(scenario.controller), seeds_(seed),
         stage_model_(make_stage_model(scenario)),
         stage_(stage_model_, spec_.mode),
@@ -124,7 +124,7 @@ class ControllerEpisode {
   }
 
  private:
-  static std::shared_ptr<const stage::StageModel> make_stage_model(const Scenario& scenario) {
+  static std::shared_ptr<const stage::StageModel> make_stage_model(const scenario::Scenario& scenario) {
     stage::StageConfig config;
     config.scene = stage::SceneKind::child_robot;
     config.arm_reach = scenario.robot.arm_reach_m;
@@ -492,7 +492,7 @@ class ControllerEpisode {
     metrics["placement_error_mm"] = freeplay::mean(placement_errors_mm_);
     metrics["trace_hash"] = fmt::format("{:016x}", trace_.hash());
     auto record = provenance_fields(log_);
-    record.update({{"kind", std::string(to_string(ScenarioKind::controller))},
+    record.update({{"kind", std::string(to_string(scenario::ScenarioKind::controller))},
                    {"duration_s", time()},
                    {"ended_by", "sequence"},
                    {"robot_mode", std::string(stage::to_string(spec_.mode))},
@@ -513,8 +513,8 @@ class ControllerEpisode {
     return record;
   }
 
-  const Scenario& scenario_;
-  const ControllerSpec& spec_;
+  const scenario::Scenario& scenario_;
+  const scenario::ControllerSpec& spec_;
   SeedSequence seeds_;
   std::shared_ptr<const stage::StageModel> stage_model_;
   stage::Stage stage_;
@@ -602,11 +602,11 @@ std::string trace_machine_kind() {
   return fmt::format("{} {} mujoco-{}", arch, compiler, stage::mujoco_version_number());
 }
 
-ControllerEpisodeResult run_controller_episode(const Scenario& scenario, std::uint64_t seed,
+ControllerEpisodeResult run_controller_episode(const scenario::Scenario& scenario, std::uint64_t seed,
                                                const SharedModels& models, const std::atomic<bool>& stop) {
-  if (scenario.kind != ScenarioKind::controller) {
+  if (scenario.kind != scenario::ScenarioKind::controller) {
     throw InputError(fmt::format("scenario '{}' is of kind '{}'", scenario.name, to_string(scenario.kind)), "kind",
-                     std::string(to_string(ScenarioKind::controller)));
+                     std::string(to_string(scenario::ScenarioKind::controller)));
   }
   ControllerEpisode episode(scenario, seed, models);
   return episode.run(stop);
