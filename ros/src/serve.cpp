@@ -232,7 +232,7 @@ class GraphRobot final : public runner::RobotActionSource, private runner::MoveS
     live_.graph->finger(stamp_, pose.position.x(), pose.position.y());
   }
   void progress(int percentage) override { live_.graph->goal_feedback(goal_id_, percentage); }
-  void move_ended(const policies::MoveItem& /*move*/, planning::MoveStatus status, nlohmann::json /*fields*/,
+  void move_ended(const policies::MoveItem& /*move*/, planning::MoveStatus status, events::MoveResult /*result*/,
                   double /*t*/) override {
     const auto& outcome = mover_->outcome();
     const auto end = status == planning::MoveStatus::Succeeded   ? ros_graph::GoalEnd::Succeeded

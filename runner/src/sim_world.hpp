@@ -124,7 +124,7 @@ class SimWorld final : public RobotWorld {
   planning::ArmFollower* arm() override;
   void move_started(const policies::MoveItem& move, bool running, double t) override;
   void finger(const planning::TimedPose& pose, double t) override;
-  void move_ended(const policies::MoveItem& move, planning::MoveStatus status, nlohmann::json fields,
+  void move_ended(const policies::MoveItem& move, planning::MoveStatus status, events::MoveResult result,
                   double t) override;
   void look_at(const policies::LookAt& look, double t) override;
   void point_at(const Vec2& point, double t) override;
