@@ -16,7 +16,7 @@
 #include "freeplay/core/atomic_file.hpp"
 #include "freeplay/core/error.hpp"
 #include "freeplay/runner/population.hpp"
-#include "freeplay/runner/scenario.hpp"
+#include "freeplay/scenario/scenario.hpp"
 #include "vocabulary.hpp"
 
 namespace freeplay::cli {
@@ -64,7 +64,7 @@ std::vector<agents::SessionResult> full_population(const std::filesystem::path& 
                                                    std::uint64_t seed, int threads, const runner::SharedModels& models) {
   std::vector<std::string> sets = overrides;
   sets.push_back(fmt::format("seed={}", seed));
-  const runner::Scenario scenario = runner::load_scenario(file, sets, scenario_vocabulary());
+  const scenario::Scenario scenario = scenario::load_scenario(file, sets, scenario_vocabulary());
   std::string label = scenario.name;
   for (const auto& o : overrides) label += " " + o;
   const auto progress = [&](int done) {
@@ -157,7 +157,7 @@ void run_calibrate(const CalibrateOptions& o) {
     }
     if (o.condition != "cc") {
       cr = agents::summarise(full_population(cr_file, {}, o.sessions, o.seed, o.threads, models), agents::Condition::ChildRobot);
-      const std::string scenario_policy = runner::load_scenario(cr_file, {}, scenario_vocabulary()).robot.policy;
+      const std::string scenario_policy = scenario::load_scenario(cr_file, {}, scenario_vocabulary()).robot.policy;
       if (!o.policies.empty()) by_policy.emplace_back(scenario_policy, *cr);
       for (const auto& policy : o.policies) {
         if (policy == scenario_policy) continue;  // the scenario's own policy ran above, on the same seeds

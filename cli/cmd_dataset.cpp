@@ -12,7 +12,7 @@
 #include "command_registry.hpp"
 #include "freeplay/core/atomic_file.hpp"
 #include "freeplay/core/error.hpp"
-#include "freeplay/runner/suite.hpp"
+#include "freeplay/scenario/suite.hpp"
 #include "freeplay/results/run_folder.hpp"
 #include "run_command.hpp"
 #include "vocabulary.hpp"
@@ -60,8 +60,8 @@ void dataset_command(const DatasetOptions& o) {
   std::vector<std::string> overrides = o.run.overrides;
   if (o.run.episodes) overrides.push_back(fmt::format("episodes={}", *o.run.episodes));
   if (o.run.seed) overrides.push_back(fmt::format("seed={}", *o.run.seed));
-  const auto suite = runner::is_suite_file(o.run.file) ? runner::load_suite(o.run.file, overrides, scenario_vocabulary())
-                                                       : runner::single_scenario_suite(o.run.file, overrides,
+  const auto suite = scenario::is_suite_file(o.run.file) ? scenario::load_suite(o.run.file, overrides, scenario_vocabulary())
+                                                       : scenario::single_scenario_suite(o.run.file, overrides,
                                                                                        scenario_vocabulary());
   std::map<std::string, nlohmann::json> records;
   {

@@ -25,9 +25,9 @@ struct MergeOptions {
 void merge(const MergeOptions& o) {
   std::optional<results::ExpectedRun> expected;
   if (!o.suite.empty()) {
-    const auto suite = runner::is_suite_file(o.suite)
-                           ? runner::load_suite(o.suite, o.overrides, scenario_vocabulary())
-                           : runner::single_scenario_suite(o.suite, o.overrides, scenario_vocabulary());
+    const auto suite = scenario::is_suite_file(o.suite)
+                           ? scenario::load_suite(o.suite, o.overrides, scenario_vocabulary())
+                           : scenario::single_scenario_suite(o.suite, o.overrides, scenario_vocabulary());
     expected = runner::expected_run(suite, o.title);
   }
   const std::vector<std::filesystem::path> inputs(o.inputs.begin(), o.inputs.end());

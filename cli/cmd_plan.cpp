@@ -133,7 +133,7 @@ class TrayOnly final : public runner::MoveSink {
   planning::MoveWorld move_world() override { return world_; }
   void move_started(const policies::MoveItem& /*move*/, bool /*running*/, double /*t*/) override {}
   void finger(const planning::TimedPose& pose, double /*t*/) override { tray_.robot_pose(pose.position); }
-  void move_ended(const policies::MoveItem& /*move*/, planning::MoveStatus /*status*/, nlohmann::json /*fields*/,
+  void move_ended(const policies::MoveItem& /*move*/, planning::MoveStatus /*status*/, events::MoveResult /*result*/,
                   double /*t*/) override {}
 
  private:

@@ -104,7 +104,7 @@ void render_scenario_moment(const RenderArgs& args) {
   std::vector<FramePack> frames;
   std::vector<std::string> cameras = args.cameras;
   std::string gl_renderer;
-  const auto context = capture_moment(args.moment, args.seed, [&](const runner::Scenario& scenario,
+  const auto context = capture_moment(args.moment, args.seed, [&](const scenario::Scenario& scenario,
                                                                   const runner::EpisodeSnapshot& snapshot) {
     if (cameras.empty()) {
       for (const auto& c : scenario.cameras) cameras.push_back(c.name);

@@ -65,8 +65,8 @@ void replay_children(const ReplayOptions& o) {
   record["variant"] = variant;
   record["scenario"] = scenario.name;
   record["scenario_file"] = scenario.file;
-  record["condition"] = std::string(runner::to_string(scenario.condition));
-  if (scenario.condition == runner::Condition::ChildRobot) record["policy"] = scenario.robot.policy;
+  record["condition"] = std::string(scenario::to_string(scenario.condition));
+  if (scenario.condition == scenario::Condition::ChildRobot) record["policy"] = scenario.robot.policy;
   record["episode"] = 0;
   record["episode_id"] = id;
   record["seed"] = recorded.seed;
@@ -86,7 +86,7 @@ void replay_children(const ReplayOptions& o) {
   }
   std::cout << fmt::format("{}: children replayed from the bag ({:.1f} s of free play, ended by {}), robot policy '{}'\n",
                            recorded.bag.string(), recorded.freeplay_duration_s, recorded.ended_by,
-                           scenario.condition == runner::Condition::ChildRobot ? scenario.robot.policy : "-");
+                           scenario.condition == scenario::Condition::ChildRobot ? scenario.robot.policy : "-");
   std::cout << fmt::format("{:<52} {:>12} {:>12}\n", "metric", before ? "episodes.jsonl" : "from bag", "replayed");
   std::map<std::string, std::pair<double, double>> rows;
   for (const auto& [name, value] : before_metrics) rows[name] = {value, std::nan("")};

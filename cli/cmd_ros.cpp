@@ -68,10 +68,10 @@ void serve_command(const ServeCommandOptions& o) {
     return;
   }
 #ifdef FREEPLAY_WITH_ROS
-  auto scenario = runner::load_scenario(o.file, o.overrides, scenario_vocabulary());
-  if (o.robot == "external" && scenario.condition != runner::Condition::ChildRobot) {
+  auto scenario = scenario::load_scenario(o.file, o.overrides, scenario_vocabulary());
+  if (o.robot == "external" && scenario.condition != scenario::Condition::ChildRobot) {
     throw InputError(fmt::format("{}: --robot external needs a child-robot scenario (condition is '{}')", o.file,
-                                 runner::to_string(scenario.condition)),
+                                 scenario::to_string(scenario.condition)),
                      "--robot", "sim, or a scenario with condition: child-robot");
   }
   ros_live::ServeOptions options;

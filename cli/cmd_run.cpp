@@ -40,7 +40,7 @@ std::pair<int, int> parse_shard(const std::string& text) {
   return {i - 1, n};
 }
 
-nlohmann::json run_identity(const RunCommandOptions& o, const runner::Suite& suite, std::pair<int, int> shard) {
+nlohmann::json run_identity(const RunCommandOptions& o, const scenario::Suite& suite, std::pair<int, int> shard) {
   nlohmann::json variants = nlohmann::json::array();
   for (const auto& v : suite.variants) {
     variants.push_back({{"id", v.id}, {"episodes", v.scenario.episodes}, {"config_hash", v.scenario.config_hash}});
@@ -81,15 +81,15 @@ void run_command(const RunCommandOptions& o, bool suite_command) {
   if (o.seed) overrides.push_back(fmt::format("seed={}", *o.seed));
   const auto shard = o.shard.empty() ? std::pair<int, int>{0, 1} : parse_shard(o.shard);
   const auto vocabulary = scenario_vocabulary();
-  const bool is_suite = runner::is_suite_file(o.file);
+  const bool is_suite = scenario::is_suite_file(o.file);
   if (suite_command && !is_suite) {
     throw InputError("this is a scenario file, not a suite (no top-level 'suite:' key)", "SUITE",
                      "a suite file; use `freeplay run` for a scenario", {o.file, 1, 1});
   }
-  const auto suite = is_suite ? runner::load_suite(o.file, overrides, vocabulary)
-                              : runner::single_scenario_suite(o.file, overrides, vocabulary);
+  const auto suite = is_suite ? scenario::load_suite(o.file, overrides, vocabulary)
+                              : scenario::single_scenario_suite(o.file, overrides, vocabulary);
   for (const auto& v : suite.variants) {  // e.g. a Python policy given to the C++ program: say so before starting
-    if (v.scenario.condition == runner::Condition::ChildRobot) policies::check_policy_available(v.scenario.robot.policy);
+    if (v.scenario.condition == scenario::Condition::ChildRobot) policies::check_policy_available(v.scenario.robot.policy);
   }
   const ObserverOptions observer_options{o.record};
   if (!observers_available() && std::any_of(suite.variants.begin(), suite.variants.end(), [&](const auto& v) {

@@ -62,7 +62,7 @@ void run_screen(const ScreenOptions& options) {
   std::string what;
   if (!options.moment.scenario.empty()) {
     if (options.shuffle) throw InputError("--shuffle acts on a fresh tray", "--shuffle", "leave it out with --scenario");
-    what = capture_moment(options.moment, options.seed, [&](const runner::Scenario&, const runner::EpisodeSnapshot& s) {
+    what = capture_moment(options.moment, options.seed, [&](const scenario::Scenario&, const runner::EpisodeSnapshot& s) {
       screen = s.tray->render_screen(options.width);
       zones = s.tray->zones();
     });

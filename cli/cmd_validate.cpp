@@ -8,7 +8,7 @@
 #include "command_registry.hpp"
 #include "freeplay/core/error.hpp"
 #include "freeplay/policies/play_policy.hpp"
-#include "freeplay/runner/suite.hpp"
+#include "freeplay/scenario/suite.hpp"
 #include "vocabulary.hpp"
 
 namespace freeplay::cli {
@@ -23,9 +23,9 @@ void validate(const ValidateOptions& options) {
   int bad = 0;
   for (const auto& file : options.files) {
     try {
-      const auto suite = runner::is_suite_file(file)
-                             ? runner::load_suite(file, options.overrides, scenario_vocabulary())
-                             : runner::single_scenario_suite(file, options.overrides, scenario_vocabulary());
+      const auto suite = scenario::is_suite_file(file)
+                             ? scenario::load_suite(file, options.overrides, scenario_vocabulary())
+                             : scenario::single_scenario_suite(file, options.overrides, scenario_vocabulary());
       std::cout << fmt::format("ok      {} ({} variant{}, {} episodes)\n", file, suite.variants.size(),
                                suite.variants.size() == 1 ? "" : "s", suite.total_episodes());
     } catch (const InputError& e) {
@@ -58,14 +58,14 @@ void list_scenarios(bool json) {
   for (const auto& f : files) {
     nlohmann::json row{{"file", f.string()}};
     try {
-      if (runner::is_suite_file(f)) {
-        const auto suite = runner::load_suite(f, {}, scenario_vocabulary());
+      if (scenario::is_suite_file(f)) {
+        const auto suite = scenario::load_suite(f, {}, scenario_vocabulary());
         row["kind"] = "suite";
         row["name"] = suite.name;
         row["description"] = suite.description;
         row["episodes"] = suite.total_episodes();
       } else {
-        const auto s = runner::load_scenario(f, {}, scenario_vocabulary());
+        const auto s = scenario::load_scenario(f, {}, scenario_vocabulary());
         row["kind"] = "scenario";
         row["name"] = s.name;
         row["description"] = s.description;

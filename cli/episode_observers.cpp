@@ -5,7 +5,7 @@ namespace freeplay::cli {
 bool observers_available() { return true; }
 
 runner::ObserverFactory make_observer_factory(ObserverOptions options) {
-  return [options](const runner::Scenario& scenario, const std::filesystem::path& run_dir) {
+  return [options](const scenario::Scenario& scenario, const std::filesystem::path& run_dir) {
     runner::EpisodeObservers observers;
     if (!has_observers(scenario, options)) return observers;
     std::vector<runner::FrameSink*> frame_sinks;

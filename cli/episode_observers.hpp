@@ -19,7 +19,7 @@ struct ObserverOptions {
 
 /// Whether the episodes of `scenario` are watched at all: recorded, or filmed into videos (cameras whose frames
 /// nothing consumes are not rendered).
-inline bool has_observers(const runner::Scenario& scenario, const ObserverOptions& options) {
+inline bool has_observers(const scenario::Scenario& scenario, const ObserverOptions& options) {
   return scenario.record || options.record ||
          std::any_of(scenario.cameras.begin(), scenario.cameras.end(), [](const auto& c) { return c.video; });
 }
@@ -31,13 +31,13 @@ bool observers_available();
 runner::ObserverFactory make_observer_factory(ObserverOptions options);
 
 /// Adds the recorder of one episode when it records; pushes the frame sinks it wants fed (cli/observers_recording.cpp).
-void add_recording_observers(const runner::Scenario& scenario, const std::filesystem::path& run_dir,
+void add_recording_observers(const scenario::Scenario& scenario, const std::filesystem::path& run_dir,
                              const ObserverOptions& options, runner::EpisodeObservers& observers,
                              std::vector<runner::FrameSink*>& frame_sinks);
 
 /// Adds the camera rig when the scenario lists cameras, feeding `frame_sinks` and its own video writers
 /// (cli/observers_cameras.cpp).
-void add_camera_observers(const runner::Scenario& scenario, const std::filesystem::path& run_dir,
+void add_camera_observers(const scenario::Scenario& scenario, const std::filesystem::path& run_dir,
                           const ObserverOptions& options, runner::EpisodeObservers& observers,
                           const std::vector<runner::FrameSink*>& frame_sinks);
 

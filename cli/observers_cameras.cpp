@@ -8,7 +8,7 @@
 
 namespace freeplay::cli {
 
-void add_camera_observers(const runner::Scenario& scenario, const std::filesystem::path& run_dir,
+void add_camera_observers(const scenario::Scenario& scenario, const std::filesystem::path& run_dir,
                           const ObserverOptions& /*options*/, runner::EpisodeObservers& observers,
                           const std::vector<runner::FrameSink*>& frame_sinks) {
   if (scenario.cameras.empty()) return;

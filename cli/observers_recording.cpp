@@ -9,7 +9,7 @@
 
 namespace freeplay::cli {
 
-void add_recording_observers(const runner::Scenario& scenario, const std::filesystem::path& run_dir,
+void add_recording_observers(const scenario::Scenario& scenario, const std::filesystem::path& run_dir,
                              const ObserverOptions& options, runner::EpisodeObservers& observers,
                              std::vector<runner::FrameSink*>& frame_sinks) {
   if (!scenario.record && !options.record) return;

@@ -7,7 +7,7 @@ namespace freeplay::cli {
 bool observers_available() { return false; }
 
 runner::ObserverFactory make_observer_factory(ObserverOptions /*options*/) {
-  return [](const runner::Scenario& /*scenario*/, const std::filesystem::path& /*run_dir*/) {
+  return [](const scenario::Scenario& /*scenario*/, const std::filesystem::path& /*run_dir*/) {
     return runner::EpisodeObservers{};
   };
 }

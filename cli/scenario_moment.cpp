@@ -19,9 +19,9 @@ void add_moment_options(CLI::App& command, MomentOptions& options) {
 }
 
 std::string capture_moment(const MomentOptions& options, std::optional<std::uint64_t> seed,
-                           const std::function<void(const runner::Scenario&, const runner::EpisodeSnapshot&)>& capture) {
+                           const std::function<void(const scenario::Scenario&, const runner::EpisodeSnapshot&)>& capture) {
   if (!options.time) throw InputError("missing --time with --scenario", "--time", "seconds since the stage started");
-  const auto scenario = runner::load_scenario(options.scenario, options.overrides, scenario_vocabulary());
+  const auto scenario = scenario::load_scenario(options.scenario, options.overrides, scenario_vocabulary());
   const std::uint64_t episode_seed = seed ? *seed : runner::episode_seed(scenario.seed, 0);
   const auto models = runner::SharedModels::load_default();
   const runner::EpisodeMoment moment{options.stage, *options.time};

@@ -28,6 +28,6 @@ void add_moment_options(CLI::App& command, MomentOptions& options);
 /// Loads the scenario (validated, with overrides), picks the seed (default: episode 0's), runs the episode to the
 /// moment and calls `capture` there; returns a one-line description ("scenario X, seed N, free play 12.3 s").
 std::string capture_moment(const MomentOptions& options, std::optional<std::uint64_t> seed,
-                           const std::function<void(const runner::Scenario&, const runner::EpisodeSnapshot&)>& capture);
+                           const std::function<void(const scenario::Scenario&, const runner::EpisodeSnapshot&)>& capture);
 
 }  // namespace freeplay::cli

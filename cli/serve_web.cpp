@@ -68,7 +68,7 @@ void run_web_serve(const std::string& file, const std::vector<std::string>& over
   if (!o.token.empty() && o.token.size() < 16) {
     throw InputError("--web-token is shorter than 16 characters", "--web-token", "16 or more characters");
   }
-  auto scenario = runner::load_scenario(file, overrides, scenario_vocabulary());
+  auto scenario = scenario::load_scenario(file, overrides, scenario_vocabulary());
   options.rate = rate;
   web::from_string(o.mode, options.mode);  // checked by --web-mode's IsMember
   options.sparc_timeout_s = o.sparc_timeout_s;

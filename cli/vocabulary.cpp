@@ -7,8 +7,8 @@
 
 namespace freeplay::cli {
 
-runner::ScenarioVocabulary scenario_vocabulary() {
-  runner::ScenarioVocabulary v;
+scenario::ScenarioVocabulary scenario_vocabulary() {
+  scenario::ScenarioVocabulary v;
   v.policies = policies::policy_names();
   for (auto& pattern : policies::policy_name_patterns()) v.policies.push_back(std::move(pattern));  // python:*
 #ifndef FREEPLAY_WITH_ESPEAK

@@ -1,12 +1,12 @@
 #pragma once
 // The names scenario files may use, collected from the registries of the linked libraries.
 
-#include "freeplay/runner/scenario.hpp"
+#include "freeplay/scenario/scenario.hpp"
 
 namespace freeplay::cli {
 
 /// Policies, planners, cameras and audio voices known to this build.
-runner::ScenarioVocabulary scenario_vocabulary();
+scenario::ScenarioVocabulary scenario_vocabulary();
 
 /// The scenarios folder shipped with the program (`scenarios/` of the source tree, or $FREEPLAY_SCENARIOS_DIR).
 std::filesystem::path scenarios_dir();

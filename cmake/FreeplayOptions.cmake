@@ -47,6 +47,16 @@ function(freeplay_add_library name)
   target_compile_features(${name} PUBLIC cxx_std_20)
 endfunction()
 
+# freeplay_add_headers(NAME DEPS ...): an INTERFACE library of this folder's public headers alone, for the header-only
+# parts (name lists, settings structs, enums) that parse-only code includes without linking the library's code; a call
+# into one of its compiled functions fails to link.
+function(freeplay_add_headers name)
+  cmake_parse_arguments(ARG "" "" "DEPS" ${ARGN})
+  add_library(${name} INTERFACE)
+  target_include_directories(${name} INTERFACE ${CMAKE_CURRENT_SOURCE_DIR}/include)
+  target_link_libraries(${name} INTERFACE ${ARG_DEPS})
+endfunction()
+
 # freeplay_add_test(NAME SOURCES ... DEPS ...): one GoogleTest executable registered with ctest.
 function(freeplay_add_test name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;LABELS" ${ARGN})

@@ -2,7 +2,7 @@
 
 #include <sstream>
 
-#include "freeplay/runner/scenario.hpp"
+#include "freeplay/scenario/scenario.hpp"
 #include "fuzz_support.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const unsigned char* data, std::size_t size) {
@@ -12,7 +12,7 @@ extern "C" int LLVMFuzzerTestOneInput(const unsigned char* data, std::size_t siz
   std::istringstream lines(freeplay::fuzz::text_of(data, size));
   for (std::string line; std::getline(lines, line);) overrides.push_back(line);
   freeplay::fuzz::expect_input_errors_only([&] {
-    freeplay::runner::scenario_from_document({base.file, YAML::Clone(base.root)}, overrides);
+    freeplay::scenario::scenario_from_document({base.file, YAML::Clone(base.root)}, overrides);
   });
   return 0;
 }

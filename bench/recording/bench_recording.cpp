@@ -19,8 +19,8 @@ namespace {
 
 const runner::SharedModels& models() { return runner::SharedModels::shipped(); }
 
-runner::Scenario scenario() {
-  return runner::scenario_from_document(parse_yaml(
+scenario::Scenario test_scenario() {
+  return scenario::scenario_from_document(parse_yaml(
       "name: bench\ncondition: child-robot\nrecord: true\n"
       "protocol: {greeting_s: 1, tutorial_s: 1, freeplay_cap_s: 30, debriefing_s: 1}\n",
       "bench.yaml"));
@@ -34,7 +34,7 @@ std::filesystem::path bench_dir() {
 }
 
 void run(benchmark::State& state, bool record) {
-  const auto s = scenario();
+  const auto s = test_scenario();
   const auto dir = bench_dir();
   double simulated = 0.0;
   std::uintmax_t bytes = 0;
@@ -102,7 +102,7 @@ void BM_CameraFrameSet(benchmark::State& state) {
 // the two SR300s, the recorder writing every stream) over a short protocol, cameras at `rate_hz`; wall-clock rate.
 void record_demo(benchmark::State& state, double rate_hz) {
   const auto rate = fmt::format("{}", rate_hz);
-  const auto s = runner::load_scenario(std::string(FREEPLAY_SCENARIOS_DIR) + "/record-demo.yaml",
+  const auto s = scenario::load_scenario(std::string(FREEPLAY_SCENARIOS_DIR) + "/record-demo.yaml",
                                        {"protocol.greeting_s=2", "protocol.tutorial_s=2", "protocol.freeplay_cap_s=10",
                                         "protocol.debriefing_s=1", "cameras.0.rate_hz=" + rate,
                                         "cameras.1.rate_hz=" + rate, "cameras.2.rate_hz=" + rate});

@@ -11,6 +11,7 @@
 #include "freeplay/runner/episode.hpp"
 
 using namespace freeplay::runner;
+using namespace freeplay::scenario;
 
 namespace {
 

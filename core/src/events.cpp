@@ -59,6 +59,43 @@ json data(const LookAt& e) {
 }
 json data(const PointAt& e) { return {{"x", e.x}, {"y", e.y}}; }
 json data(const Cancel&) { return nullptr; }
+/// Sets `d[key]` when `value` is there.
+template <class T>
+void put(json& d, const char* key, const std::optional<T>& value) {
+  if (value) d[key] = *value;
+}
+json data(const MoveResult& e) {
+  json d{{"item", e.item},       {"status", e.status}, {"reason", e.reason}, {"target_in_reach", e.target_in_reach},
+         {"poses", e.poses}, {"stolen_by_child", e.stolen_by_child}};
+  put(d, "path_length_m", e.path_length_m);
+  put(d, "min_clearance_mm", e.min_clearance_mm);
+  put(d, "sync_error_mm_mean", e.sync_error_mm_mean);
+  put(d, "sync_error_mm_max", e.sync_error_mm_max);
+  put(d, "sync_lag_ms", e.sync_lag_ms);
+  put(d, "duration_s", e.duration_s);
+  return d;
+}
+json data(const TargetStart& e) { return {{"index", e.index}, {"kind", e.kind}}; }
+/// Calls `f(key, field)` for every optional measure of a target's end, in one place for the writer and the reader.
+template <class E, class F>
+bool each_measure(E& e, F&& f) {
+  return f("point", e.point) && f("reachable", e.reachable) && f("ik_error_mm", e.ik_error_mm) &&
+         f("look", e.look) && f("clamped", e.clamped) && f("gaze_error_deg", e.gaze_error_deg) &&
+         f("posture", e.posture) && f("joint_error_rad", e.joint_error_rad) && f("wait_s", e.wait_s) &&
+         f("item", e.item) && f("to", e.to) && f("status", e.status) && f("reason", e.reason) &&
+         f("poses", e.poses) && f("error_mm", e.error_mm) && f("sync_error_mm_mean", e.sync_error_mm_mean) &&
+         f("sync_error_mm_max", e.sync_error_mm_max) && f("sync_lag_ms", e.sync_lag_ms) &&
+         f("unreachable_poses", e.unreachable_poses) && f("placement_error_mm", e.placement_error_mm) &&
+         f("settled", e.settled) && f("settle_s", e.settle_s);
+}
+json data(const TargetEnd& e) {
+  json d{{"index", e.index}, {"kind", e.kind}, {"t_start", e.t_start}, {"t_end", e.t_end}};
+  each_measure(e, [&](const char* key, const auto& value) {
+    put(d, key, value);
+    return true;
+  });
+  return d;
+}
 json data(const Stage& e) { return {{"stage", e.stage}}; }
 json data(const SignalReceived& e) { return {{"name", e.name}, {"stage", e.stage}}; }
 json data(const FreeplayEnded& e) { return {{"ended_by", e.ended_by}, {"duration_s", e.duration_s}}; }
@@ -73,6 +110,9 @@ bool has_type(const json& v, const double*) { return v.is_number_float(); }
 bool has_type(const json& v, const bool*) { return v.is_boolean(); }
 bool has_type(const json& v, const std::vector<std::string>*) {
   return v.is_array() && std::all_of(v.begin(), v.end(), [](const json& x) { return x.is_string(); });
+}
+bool has_type(const json& v, const std::vector<double>*) {
+  return v.is_array() && std::all_of(v.begin(), v.end(), [](const json& x) { return x.is_number_float(); });
 }
 
 /// Reads field `key` of `d` into `out`: true when it is there with the field's JSON type.
@@ -143,6 +183,23 @@ bool decode(const json& d, LookAt& e) {
 }
 bool decode(const json& d, PointAt& e) { return d.is_object() && read(d, "x", e.x) && read(d, "y", e.y); }
 bool decode(const json& d, Cancel&) { return d.is_null(); }
+bool decode(const json& d, MoveResult& e) {
+  return d.is_object() && read(d, "item", e.item) && read(d, "status", e.status) && read(d, "reason", e.reason) &&
+         read(d, "target_in_reach", e.target_in_reach) && read(d, "poses", e.poses) &&
+         read(d, "stolen_by_child", e.stolen_by_child) && read_optional(d, "path_length_m", e.path_length_m) &&
+         read_optional(d, "min_clearance_mm", e.min_clearance_mm) &&
+         read_optional(d, "sync_error_mm_mean", e.sync_error_mm_mean) &&
+         read_optional(d, "sync_error_mm_max", e.sync_error_mm_max) &&
+         read_optional(d, "sync_lag_ms", e.sync_lag_ms) && read_optional(d, "duration_s", e.duration_s);
+}
+bool decode(const json& d, TargetStart& e) {
+  return d.is_object() && read(d, "index", e.index) && read(d, "kind", e.kind);
+}
+bool decode(const json& d, TargetEnd& e) {
+  return d.is_object() && read(d, "index", e.index) && read(d, "kind", e.kind) && read(d, "t_start", e.t_start) &&
+         read(d, "t_end", e.t_end) &&
+         each_measure(e, [&](const char* key, auto& value) { return read_optional(d, key, value); });
+}
 bool decode(const json& d, Stage& e) { return d.is_object() && read(d, "stage", e.stage); }
 bool decode(const json& d, SignalReceived& e) {
   return d.is_object() && read(d, "name", e.name) && read(d, "stage", e.stage);

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "freeplay/policies/play_policy.hpp"
-#include "freeplay/runner/settings.hpp"
+#include "freeplay/scenario/settings.hpp"
 
 namespace freeplay::python {
 
@@ -30,6 +30,6 @@ std::vector<policies::Action> actions_from_python(const py::handle& returned, co
 /// A YAML node as Python data (maps → dict, sequences → list, scalars → bool, int, float or str).
 py::object yaml_to_python(const YAML::Node& node);
 /// The names a scenario may use in this module: the C++ policies and `python:*`.
-runner::ScenarioVocabulary python_vocabulary();
+scenario::ScenarioVocabulary python_vocabulary();
 
 }  // namespace freeplay::python

@@ -19,7 +19,7 @@
 #include "freeplay/agents/labels.hpp"
 #include "freeplay/core/error.hpp"
 #include "freeplay/runner/episode.hpp"
-#include "freeplay/runner/suite.hpp"
+#include "freeplay/scenario/suite.hpp"
 
 namespace freeplay::python {
 
@@ -75,12 +75,12 @@ class EnvEpisode {
   EnvEpisode(const std::string& file, const std::vector<std::string>& overrides, bool perceives_children,
              bool privileged)
       : perceives_children_(perceives_children), privileged_(privileged) {
-    auto suite = runner::single_scenario_suite(file, overrides, python_vocabulary());
+    auto suite = scenario::single_scenario_suite(file, overrides, python_vocabulary());
     scenario_ = std::move(suite.variants.front().scenario);
-    if (scenario_.condition != runner::Condition::ChildRobot) {
+    if (scenario_.condition != scenario::Condition::ChildRobot) {
       throw InputError(fmt::format("freeplay.Env steps the robot, but scenario '{}' is {}", scenario_.name,
-                                   runner::to_string(scenario_.condition)),
-                       "condition", std::string(runner::to_string(runner::Condition::ChildRobot)), {file, 1, 1});
+                                   scenario::to_string(scenario_.condition)),
+                       "condition", std::string(scenario::to_string(scenario::Condition::ChildRobot)), {file, 1, 1});
     }
     scenario_.robot.policy = std::string(policies::kPythonPolicyPrefix) + "env";
   }
@@ -231,7 +231,7 @@ class EnvEpisode {
     worker_.join();
   }
 
-  runner::Scenario scenario_;
+  scenario::Scenario scenario_;
   bool perceives_children_ = false;
   bool privileged_ = false;
   std::thread worker_;

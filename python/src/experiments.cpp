@@ -11,7 +11,7 @@
 #include "bindings.hpp"
 #include "command_registry.hpp"
 #include "freeplay/core/error.hpp"
-#include "freeplay/runner/suite.hpp"
+#include "freeplay/scenario/suite.hpp"
 #include "freeplay/runner/suite_runner.hpp"
 #include "freeplay/results/run_folder.hpp"
 #include "run_command.hpp"
@@ -21,12 +21,12 @@ namespace freeplay::python {
 
 namespace {
 
-runner::Suite load_any(const std::string& file, const std::vector<std::string>& overrides) {
-  return runner::is_suite_file(file) ? runner::load_suite(file, overrides, python_vocabulary())
-                                     : runner::single_scenario_suite(file, overrides, python_vocabulary());
+scenario::Suite load_any(const std::string& file, const std::vector<std::string>& overrides) {
+  return scenario::is_suite_file(file) ? scenario::load_suite(file, overrides, python_vocabulary())
+                                     : scenario::single_scenario_suite(file, overrides, python_vocabulary());
 }
 
-py::dict suite_data(const runner::Suite& suite, bool is_suite) {
+py::dict suite_data(const scenario::Suite& suite, bool is_suite) {
   py::dict out;
   out["name"] = suite.name;
   out["description"] = suite.description;
@@ -38,10 +38,10 @@ py::dict suite_data(const runner::Suite& suite, bool is_suite) {
     py::dict d;
     d["id"] = v.id;
     d["name"] = v.scenario.name;
-    d["condition"] = std::string(runner::to_string(v.scenario.condition));
+    d["condition"] = std::string(scenario::to_string(v.scenario.condition));
     d["episodes"] = v.scenario.episodes;
     d["seed"] = v.scenario.seed;
-    d["policy"] = v.scenario.condition == runner::Condition::ChildRobot ? py::object(py::str(v.scenario.robot.policy)) : py::none();
+    d["policy"] = v.scenario.condition == scenario::Condition::ChildRobot ? py::object(py::str(v.scenario.robot.policy)) : py::none();
     d["config_hash"] = v.scenario.config_hash;
     d["scenario"] = yaml_to_python(v.scenario.source);
     variants.append(d);
@@ -60,15 +60,15 @@ std::string fresh_run_dir(const std::string& name) {
 
 }  // namespace
 
-runner::ScenarioVocabulary python_vocabulary() { return cli::scenario_vocabulary(); }
+scenario::ScenarioVocabulary python_vocabulary() { return cli::scenario_vocabulary(); }
 
 void bind_experiments(py::module_& m) {
   m.def("_load", [](const std::string& file, const std::vector<std::string>& overrides) {
-    runner::Suite suite;
+    scenario::Suite suite;
     bool is_suite = false;
     {
       py::gil_scoped_release release;
-      is_suite = runner::is_suite_file(file);
+      is_suite = scenario::is_suite_file(file);
       suite = load_any(file, overrides);
     }
     return suite_data(suite, is_suite);
@@ -97,7 +97,7 @@ void bind_experiments(py::module_& m) {
       const auto previous = std::signal(SIGINT, SIG_DFL);
       std::signal(SIGINT, previous);
       try {
-        cli::run_command(o, runner::is_suite_file(o.file));
+        cli::run_command(o, scenario::is_suite_file(o.file));
       } catch (const CLI::RuntimeError& e) {
         if (e.get_exit_code() != 130) {
           std::signal(SIGINT, previous);

@@ -64,7 +64,7 @@ struct EncodedImages {
   std::vector<std::uint8_t> depth;  ///< compressedDepth payload
 };
 
-EncodedImages encode_images(const cv::Mat& rgb, const cv::Mat& depth_m, const runner::RecordSettings& settings) {
+EncodedImages encode_images(const cv::Mat& rgb, const cv::Mat& depth_m, const scenario::RecordSettings& settings) {
   EncodedImages out;
   if (!rgb.empty()) out.jpeg = encode_jpeg(rgb, settings.jpeg_quality);
   if (!depth_m.empty()) out.depth = encode_compressed_depth(depth_m, settings.png_level);
@@ -75,10 +75,10 @@ EncodedImages encode_images(const cv::Mat& rgb, const cv::Mat& depth_m, const ru
 
 struct BagRecorder::Impl {
   std::filesystem::path root;
-  runner::RecordSettings settings;
+  scenario::RecordSettings settings;
   SessionPaths paths;
   std::string id;
-  runner::Condition condition = runner::Condition::ChildChild;
+  scenario::Condition condition = scenario::Condition::ChildChild;
   std::uint64_t seed = 0;
   std::string scenario_name;
   std::string gl_renderer;
@@ -176,7 +176,7 @@ struct BagRecorder::Impl {
                               scenario_name, id, seed);
     info.timestamp_ns = ros_time(freeplay_start.value_or(0.0)).toNSec();
     info.condition = condition;
-    const std::string suffix = condition == runner::Condition::ChildRobot ? "2" : "1";
+    const std::string suffix = condition == scenario::Condition::ChildRobot ? "2" : "1";
     for (const auto& p : participants) {
       Participant out = p;
       if (children != nullptr && children->contains(p.id)) {
@@ -303,7 +303,7 @@ struct BagRecorder::Impl {
   }
 };
 
-BagRecorder::BagRecorder(std::filesystem::path sessions_root, runner::RecordSettings settings)
+BagRecorder::BagRecorder(std::filesystem::path sessions_root, scenario::RecordSettings settings)
     : impl_(std::make_unique<Impl>()) {
   impl_->root = std::move(sessions_root);
   impl_->settings = std::move(settings);
@@ -326,7 +326,7 @@ void BagRecorder::begin(const runner::EpisodeInfo& info) {
   d.clocks = PublisherClocks(info.seed);
   TickTopicsOptions topics_options;
   topics_options.png_level = d.settings.png_level;
-  const bool child_robot = info.scenario != nullptr && info.scenario->condition == runner::Condition::ChildRobot;
+  const bool child_robot = info.scenario != nullptr && info.scenario->condition == scenario::Condition::ChildRobot;
   topics_options.streams = child_robot ? kBagStreams : kBagStreams & ~unsigned{kRobotLinks};
   if (child_robot) topics_options.arm_reach_m = info.scenario->robot.arm_reach_m;
   d.tick_topics = std::make_unique<TickTopics>(info.seed, topics_options);

@@ -217,8 +217,8 @@ agents::ChildActions ReplayedChildren::actions(const std::string& seat, double t
   return it != by_seat->second.end() ? it->second : none;
 }
 
-runner::Scenario replay_scenario(const RecordedChildren& recording, const std::string& policy,
-                                 const runner::ScenarioVocabulary& vocabulary) {
+scenario::Scenario replay_scenario(const RecordedChildren& recording, const std::string& policy,
+                                 const scenario::ScenarioVocabulary& vocabulary) {
   auto root = YAML::Load(recording.scenario_yaml);
   const bool child_robot = recorded_condition(root) == agents::Condition::ChildRobot;
   if (!policy.empty()) {
@@ -239,11 +239,11 @@ runner::Scenario replay_scenario(const RecordedChildren& recording, const std::s
   YAML::Emitter text;
   text.SetDoublePrecision(17);
   text << root;
-  return runner::scenario_from_document(parse_yaml(text.c_str(), recording.bag.string() + "#/freeplay/scenario"), {},
+  return scenario::scenario_from_document(parse_yaml(text.c_str(), recording.bag.string() + "#/freeplay/scenario"), {},
                                         vocabulary);
 }
 
-runner::EpisodeResult replay_children(const RecordedChildren& recording, const runner::Scenario& scenario,
+runner::EpisodeResult replay_children(const RecordedChildren& recording, const scenario::Scenario& scenario,
                                       const runner::SharedModels& models) {
   ReplayedChildren source(recording);
   auto result = runner::run_episode({.scenario = scenario,

@@ -78,7 +78,7 @@ void EpisodeMetrics::on_robot_event(const Event& e, double t) {
     action = "cancel";
   } else if (e.get<events::Say>() != nullptr) {
     if (in_freeplay_) action = "say";
-  } else if (e.type() == "move_result") {  // its fields are the robot side's (events::Other)
+  } else if (e.type() == "move_result") {  // by its fields: events::MoveResult, or Other in an older log
     robot_gaze_ = {"tray", ""};
     const auto d = e.data();
     if (d.contains("path_length_m")) path_lengths_m_.push_back(d["path_length_m"].get<double>());

@@ -118,10 +118,10 @@ class GraphActuators final : public runner::RobotWorld {
     graph_.finger(pose.position.x(), pose.position.y());
     ++stats_.poses_sent;
   }
-  void move_ended(const policies::MoveItem& move, planning::MoveStatus status, nlohmann::json fields,
+  void move_ended(const policies::MoveItem& move, planning::MoveStatus status, events::MoveResult result,
                   double /*t*/) override {
     if (status == planning::MoveStatus::Succeeded || status == planning::MoveStatus::Preempted) return;
-    spdlog::warn("move {} failed: {}", move.item, fields.value("reason", ""));
+    spdlog::warn("move {} failed: {}", move.item, result.reason);
   }
   void look_at(const policies::LookAt& look, double /*t*/) override {
     // A child's face: where the seat puts it (the robot node has no head tracker of its own).

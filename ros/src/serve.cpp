@@ -19,7 +19,7 @@
 #include "freeplay/runner/camera_rig.hpp"
 #include "freeplay/runner/move_driver.hpp"
 #include "freeplay/runner/sandtray_world.hpp"
-#include "freeplay/runner/scenario.hpp"
+#include "freeplay/scenario/scenario.hpp"
 #include "freeplay/sim/screen.hpp"
 
 namespace freeplay::ros_live {
@@ -163,7 +163,7 @@ class GraphSignals final : public runner::SignalSource {
 /// by the one move driver, whose poses reach the game as the graph's do.
 class GraphRobot final : public runner::RobotActionSource, private runner::MoveSink {
  public:
-  GraphRobot(Live& live, const runner::Scenario& scenario, LivePublisher& publisher, const SeedSequence& seeds)
+  GraphRobot(Live& live, const scenario::Scenario& scenario, LivePublisher& publisher, const SeedSequence& seeds)
       : live_(live), scenario_(scenario), publisher_(publisher), goal_rng_(seeds.stream("serve.planner")),
         plan_rng_(seeds.stream("serve.plan_motion")) {}
 
@@ -232,7 +232,7 @@ class GraphRobot final : public runner::RobotActionSource, private runner::MoveS
     live_.graph->finger(stamp_, pose.position.x(), pose.position.y());
   }
   void progress(int percentage) override { live_.graph->goal_feedback(goal_id_, percentage); }
-  void move_ended(const policies::MoveItem& /*move*/, planning::MoveStatus status, nlohmann::json /*fields*/,
+  void move_ended(const policies::MoveItem& /*move*/, planning::MoveStatus status, events::MoveResult /*result*/,
                   double /*t*/) override {
     const auto& outcome = mover_->outcome();
     const auto end = status == planning::MoveStatus::Succeeded   ? ros_graph::GoalEnd::Succeeded
@@ -268,7 +268,7 @@ class GraphRobot final : public runner::RobotActionSource, private runner::MoveS
   }
 
   Live& live_;
-  const runner::Scenario& scenario_;
+  const scenario::Scenario& scenario_;
   LivePublisher& publisher_;
   Rng goal_rng_;                           // the goals' planner stream (handed to the move driver)
   Rng plan_rng_;                           // the `plan_motion` service's planner stream
@@ -285,14 +285,14 @@ void serve_plans(GraphRobot& robot, const sim::Sandtray& tray) { robot.serve_pla
 }  // namespace
 
 struct GraphSide::Impl {
-  Impl(const runner::Scenario& scenario, std::uint64_t seed, const ServeOptions& options)
+  Impl(const scenario::Scenario& scenario, std::uint64_t seed, const ServeOptions& options)
       : graph(make_graph(scenario, options)),
         live{graph.get(), ros_graph::wall_now()},
         publisher(live, GraphTopics(seed, static_cast<std::uint64_t>(std::llround(live.stamp_origin * 1e9)),
                                     !options.external_robot, scenario.robot.arm_reach_m)),
         cameras(live, scenario.recording.jpeg_quality) {
     for (const auto& declaration : publisher.topics().declarations()) graph->advertise(declaration);
-    const bool child_robot = scenario.condition == runner::Condition::ChildRobot;
+    const bool child_robot = scenario.condition == scenario::Condition::ChildRobot;
     if (child_robot) {
       const auto body = runner::SharedModels::shipped().robot_body(scenario.robot.mode, scenario.robot.arm_reach_m);
       publisher.set_reach(body->reach());
@@ -308,10 +308,10 @@ struct GraphSide::Impl {
     signals = std::make_unique<GraphSignals>(*graph, publisher, localisation.get());
   }
 
-  static std::unique_ptr<ros_graph::SandtrayGraph> make_graph(const runner::Scenario& scenario, const ServeOptions& options) {
+  static std::unique_ptr<ros_graph::SandtrayGraph> make_graph(const scenario::Scenario& scenario, const ServeOptions& options) {
     std::string error;
     if (!ros_graph::start_ros(options.node_name, options.master_timeout_s, error)) throw std::runtime_error(error);
-    const bool child_robot = scenario.condition == runner::Condition::ChildRobot;
+    const bool child_robot = scenario.condition == scenario::Condition::ChildRobot;
     return std::make_unique<ros_graph::SandtrayGraph>(
         ros_graph::NodeOptions{options.node_name, options.rate != 1.0, options.external_robot && child_robot});
   }
@@ -325,7 +325,7 @@ struct GraphSide::Impl {
   std::unique_ptr<GraphSignals> signals;
 };
 
-GraphSide::GraphSide(const runner::Scenario& scenario, std::uint64_t seed, const ServeOptions& options)
+GraphSide::GraphSide(const scenario::Scenario& scenario, std::uint64_t seed, const ServeOptions& options)
     : impl_(std::make_unique<Impl>(scenario, seed, options)) {}
 
 GraphSide::~GraphSide() = default;
@@ -338,7 +338,7 @@ runner::SignalSource& GraphSide::signals() { return *impl_->signals; }
 
 runner::RobotActionSource* GraphSide::robot() { return impl_->robot.get(); }
 
-runner::EpisodeResult serve(const runner::Scenario& scenario, std::uint64_t seed, const ServeOptions& options,
+runner::EpisodeResult serve(const scenario::Scenario& scenario, std::uint64_t seed, const ServeOptions& options,
                             const std::atomic<bool>& stop, runner::PacingTiming* timing) {
   GraphSide side(scenario, seed, options);
   runner::LiveEpisode live(options.rate, stop);

@@ -66,7 +66,7 @@ stage::ChildRole role_of(const std::string& seat) {
 }
 
 /// The colour and depth image sizes of one scenario camera (the renderer checks both, even without depth).
-std::pair<cv::Size, cv::Size> image_sizes(const stage::StageModel& model, const CameraStream& camera) {
+std::pair<cv::Size, cv::Size> image_sizes(const stage::StageModel& model, const scenario::CameraStream& camera) {
   const auto& spec = model.camera(camera.name);
   const cv::Size color(camera.width, camera.height);
   const bool depth_follows_color = spec.depth.width == spec.color.width && spec.depth.height == spec.color.height;
@@ -75,7 +75,7 @@ std::pair<cv::Size, cv::Size> image_sizes(const stage::StageModel& model, const 
 
 }  // namespace
 
-stage::RendererOptions renderer_options(const RenderingSettings& rendering) {
+stage::RendererOptions renderer_options(const scenario::RenderingSettings& rendering) {
   stage::RendererOptions options;
   options.backend = rendering.backend.empty() ? stage::default_gl_backend() : stage::gl_backend_from_name(rendering.backend);
   options.preset = stage::visual_preset_from_name(rendering.preset);
@@ -163,7 +163,7 @@ void StageMirror::pose_child(const ChildSnapshot& child) {
 
 // ---- CameraRig -----------------------------------------------------------------------------------------------
 
-CameraRig::CameraRig(const Scenario& scenario, stage::RendererOptions options, std::vector<FrameSink*> sinks)
+CameraRig::CameraRig(const scenario::Scenario& scenario, stage::RendererOptions options, std::vector<FrameSink*> sinks)
     : cameras_(scenario.cameras), options_(options), sinks_(std::move(sinks)) {}
 
 CameraRig::~CameraRig() = default;

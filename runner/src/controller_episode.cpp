@@ -37,7 +37,7 @@ namespace {
 
 using stage::kNaoJointCount;
 using stage::NaoJointVector;
-using Target = ControllerTarget;
+using Target = scenario::ControllerTarget;
 
 constexpr double kPhysicsDtS = 0.002;      // the stage's MuJoCo timestep
 constexpr int kControlSteps = 10;          // 20 ms control cycle (ALMotion's DCM/motion cycle)
@@ -81,7 +81,7 @@ double max_of(const std::vector<double>& v) {
 /// One controller episode: owns the stage, the Nao controller, a sandtray for item moves and the metrics.
 class ControllerEpisode {
  public:
-  ControllerEpisode(const Scenario& scenario, std::uint64_t seed, const SharedModels& models)
+  ControllerEpisode(const scenario::Scenario& scenario, std::uint64_t seed, const SharedModels& models)
       : scenario_(scenario), spec_(scenario.controller), seeds_(seed),
         stage_model_(make_stage_model(scenario)),
         stage_(stage_model_, spec_.mode),
@@ -124,7 +124,7 @@ class ControllerEpisode {
   }
 
  private:
-  static std::shared_ptr<const stage::StageModel> make_stage_model(const Scenario& scenario) {
+  static std::shared_ptr<const stage::StageModel> make_stage_model(const scenario::Scenario& scenario) {
     stage::StageConfig config;
     config.scene = stage::SceneKind::child_robot;
     config.arm_reach = scenario.robot.arm_reach_m;
@@ -335,7 +335,7 @@ class ControllerEpisode {
       episode_.tray_.robot_pose(pose.position);
       episode_.last_finger_ = pose.position;
     }
-    void move_ended(const policies::MoveItem& /*move*/, planning::MoveStatus /*status*/, nlohmann::json /*fields*/,
+    void move_ended(const policies::MoveItem& /*move*/, planning::MoveStatus /*status*/, events::MoveResult /*result*/,
                     double /*t*/) override {}
 
    private:
@@ -355,8 +355,11 @@ class ControllerEpisode {
 
   void run_target(std::size_t index, const Target& t) {
     const double start = time();
-    nlohmann::json out{{"index", index}, {"kind", std::string(kind_name(t.kind))}, {"t_start", start}};
-    log_.emit({start, "controller", "target_start", {{"index", index}, {"kind", std::string(kind_name(t.kind))}}});
+    events::TargetEnd out;
+    out.index = index;
+    out.kind = std::string(kind_name(t.kind));
+    out.t_start = start;
+    log_.emit({start, "controller", events::TargetStart{index, out.kind}});
     switch (t.kind) {
       case Target::Kind::Point: {
         const Eigen::Vector2d p(t.point[0], t.point[1]);
@@ -364,8 +367,10 @@ class ControllerEpisode {
         commanded_tip_ = ik.fingertip;
         const double settle_s = settle(start, [&] { return tip_settled(); });
         const double error_mm = (fingertip().head<2>() - p).norm() * 1000.0;
-        out.update({{"point", t.point}, {"reachable", ik.reachable}, {"ik_error_mm", ik.error_m * 1000.0},
-                    {"error_mm", error_mm}});
+        out.point = t.point;
+        out.reachable = ik.reachable;
+        out.ik_error_mm = ik.error_m * 1000.0;
+        out.error_mm = error_mm;
         fingertip_errors_mm_.push_back(error_mm);
         if (ik.reachable) reachable_errors_mm_.push_back(error_mm);
         finish_settle(out, settle_s);
@@ -378,7 +383,9 @@ class ControllerEpisode {
         const double error_deg = gaze_error_deg(p);
         gaze_errors_deg_.push_back(error_deg);
         if (!gaze.clamped) unclamped_gaze_errors_deg_.push_back(error_deg);
-        out.update({{"look", t.point}, {"clamped", gaze.clamped}, {"gaze_error_deg", error_deg}});
+        out.look = t.point;
+        out.clamped = gaze.clamped;
+        out.gaze_error_deg = error_deg;
         finish_settle(out, settle_s);
         break;
       }
@@ -389,35 +396,37 @@ class ControllerEpisode {
           return 0;
         });
         const double settle_s = settle(start, [&] { return joint_error_to_goal() <= spec_.settle_tolerance_rad; });
-        out.update({{"posture", t.posture}, {"joint_error_rad", joint_error_to_goal()}});
+        out.posture = t.posture;
+        out.joint_error_rad = joint_error_to_goal();
         finish_settle(out, settle_s);
         break;
       }
       case Target::Kind::Wait:
         run_until(t.seconds, [] { return false; });
-        out["wait_s"] = t.seconds;
+        out.wait_s = t.seconds;
         break;
       case Target::Kind::Move: run_move(t, out); break;
       case Target::Kind::RandomPoints: break;  // expanded before the run
     }
-    out["t_end"] = time();
-    log_.emit({time(), "controller", "target_end", out});
-    per_target_.push_back(std::move(out));
+    out.t_end = time();
+    per_target_.push_back(events::data_of(out));
+    log_.emit({time(), "controller", std::move(out)});
   }
 
-  void run_move(const Target& t, nlohmann::json& out) {
+  void run_move(const Target& t, events::TargetEnd& out) {
     if (t.from) tray_.place_item(t.item, Pose2{(*t.from)[0], (*t.from)[1], 0.0});
     const Vec2 to(t.point[0], t.point[1]);
     released_ = false;
     mover_->start({t.item, to}, time(), tray_sink_);
-    out.update({{"item", t.item}, {"to", t.point}});
+    out.item = t.item;
+    out.to = t.point;
     // Stream the poses (the executor ends by itself; a generous cap guards against a stuck stream).
     run_until(600.0, [&] { return !mover_->moving(); });
     const auto& outcome = mover_->outcome();
     const double stream_end = time();
-    out["status"] = std::string(planning::move_status_name(outcome.status));
-    out["reason"] = outcome.reason();
-    out["poses"] = outcome.poses_sent;
+    out.status = std::string(planning::move_status_name(outcome.status));
+    out.reason = outcome.reason();
+    out.poses = outcome.poses_sent;
     if (outcome.status != planning::MoveStatus::Succeeded) {
       ++moves_failed_;
       return;
@@ -436,20 +445,20 @@ class ControllerEpisode {
     sync_mean_mm_.push_back(sync.mean_error_m * 1000.0);
     sync_max_mm_.push_back(sync.max_error_m * 1000.0);
     sync_lag_ms_.push_back(sync.best_lag_s * 1000.0);
-    out.update({{"error_mm", error_mm},
-                {"sync_error_mm_mean", sync.mean_error_m * 1000.0},
-                {"sync_error_mm_max", sync.max_error_m * 1000.0},
-                {"sync_lag_ms", sync.best_lag_s * 1000.0},
-                {"unreachable_poses", sync.unreachable},
-                {"placement_error_mm", final_outcome.placement_error_m ? *final_outcome.placement_error_m * 1000.0 : kNaN}});
+    out.error_mm = error_mm;
+    out.sync_error_mm_mean = sync.mean_error_m * 1000.0;
+    out.sync_error_mm_max = sync.max_error_m * 1000.0;
+    out.sync_lag_ms = sync.best_lag_s * 1000.0;
+    out.unreachable_poses = sync.unreachable;
+    out.placement_error_mm = final_outcome.placement_error_m ? *final_outcome.placement_error_m * 1000.0 : kNaN;
     finish_settle(out, settle_s);
   }
 
   bool tip_settled() const { return (fingertip() - commanded_tip_).head<2>().norm() <= spec_.settle_tolerance_m; }
 
-  void finish_settle(nlohmann::json& out, double settle_s) {
-    out["settled"] = !std::isnan(settle_s);
-    out["settle_s"] = settle_s;
+  void finish_settle(events::TargetEnd& out, double settle_s) {
+    out.settled = !std::isnan(settle_s);
+    out.settle_s = settle_s;
     if (std::isnan(settle_s)) {
       ++unsettled_;
     } else {
@@ -492,7 +501,7 @@ class ControllerEpisode {
     metrics["placement_error_mm"] = freeplay::mean(placement_errors_mm_);
     metrics["trace_hash"] = fmt::format("{:016x}", trace_.hash());
     auto record = provenance_fields(log_);
-    record.update({{"kind", std::string(to_string(ScenarioKind::controller))},
+    record.update({{"kind", std::string(to_string(scenario::ScenarioKind::controller))},
                    {"duration_s", time()},
                    {"ended_by", "sequence"},
                    {"robot_mode", std::string(stage::to_string(spec_.mode))},
@@ -513,8 +522,8 @@ class ControllerEpisode {
     return record;
   }
 
-  const Scenario& scenario_;
-  const ControllerSpec& spec_;
+  const scenario::Scenario& scenario_;
+  const scenario::ControllerSpec& spec_;
   SeedSequence seeds_;
   std::shared_ptr<const stage::StageModel> stage_model_;
   stage::Stage stage_;
@@ -602,11 +611,11 @@ std::string trace_machine_kind() {
   return fmt::format("{} {} mujoco-{}", arch, compiler, stage::mujoco_version_number());
 }
 
-ControllerEpisodeResult run_controller_episode(const Scenario& scenario, std::uint64_t seed,
+ControllerEpisodeResult run_controller_episode(const scenario::Scenario& scenario, std::uint64_t seed,
                                                const SharedModels& models, const std::atomic<bool>& stop) {
-  if (scenario.kind != ScenarioKind::controller) {
+  if (scenario.kind != scenario::ScenarioKind::controller) {
     throw InputError(fmt::format("scenario '{}' is of kind '{}'", scenario.name, to_string(scenario.kind)), "kind",
-                     std::string(to_string(ScenarioKind::controller)));
+                     std::string(to_string(scenario::ScenarioKind::controller)));
   }
   ControllerEpisode episode(scenario, seed, models);
   return episode.run(stop);

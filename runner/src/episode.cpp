@@ -217,7 +217,7 @@ class Episode {
     for (auto* o : *observers_) o->observe(snapshot);
   }
 
-  const Scenario& scenario_;
+  const scenario::Scenario& scenario_;
   SeedSequence seeds_;
   detail::SimWorld world_;
   std::optional<RobotSide> robot_;
@@ -245,7 +245,7 @@ EpisodeResult run_episode(const EpisodeInputs& inputs, const EpisodeOutputs& out
 EpisodeFunction episode_function(const SharedModels& models, ObserverFactory observers, std::filesystem::path run_dir) {
   return [&models, observers = std::move(observers), run_dir = std::move(run_dir)](const EpisodeTask& task,
                                                                                    const std::atomic<bool>& stop) {
-    if (task.variant->scenario.kind == ScenarioKind::controller) return run_controller_task(task, models, stop);
+    if (task.variant->scenario.kind == scenario::ScenarioKind::controller) return run_controller_task(task, models, stop);
     const auto id = results::RunFolder::episode_file_id(task.variant->id, task.index);
     EpisodeObservers attached = observers ? observers(task.variant->scenario, run_dir) : EpisodeObservers{};
     auto result = run_episode({.scenario = task.variant->scenario,

@@ -51,7 +51,7 @@ class MomentObserver final : public EpisodeObserver {
 };
 
 /// How long a fixed-length stage lasts, or −1 for free play (it ends when the children quit or at the cap).
-double fixed_stage_length(const Scenario& scenario, const std::string& stage) {
+double fixed_stage_length(const scenario::Scenario& scenario, const std::string& stage) {
   if (stage == "greeting") return scenario.protocol.greeting_s;
   if (stage == "tutorial") return scenario.protocol.tutorial_s;
   if (stage == "debriefing") return scenario.protocol.debriefing_s;
@@ -61,7 +61,7 @@ double fixed_stage_length(const Scenario& scenario, const std::string& stage) {
 
 }  // namespace
 
-CaptureResult capture_episode_moment(const Scenario& scenario, std::uint64_t seed, const SharedModels& models,
+CaptureResult capture_episode_moment(const scenario::Scenario& scenario, std::uint64_t seed, const SharedModels& models,
                                      const EpisodeMoment& moment,
                                      const std::function<void(const EpisodeSnapshot&)>& capture) {
   const double length = fixed_stage_length(scenario, moment.stage);

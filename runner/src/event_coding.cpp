@@ -105,7 +105,7 @@ agents::SessionAnnotations code_event_log(const std::vector<Event>& events, cons
       players[1].gaze.item = item;
       return;
     }
-    if (e.source == "robot" && e.type() == "move_result") {
+    if (e.get<events::MoveResult>() != nullptr && e.source == "robot") {
       players[1].fingers.erase(0);
       players[1].gaze = agents::GazeTarget{};
       players[1].gaze.kind = agents::GazeKind::Tray;

@@ -43,28 +43,29 @@ std::optional<policies::ActionResult> MoveDriver::cancel(double t, MoveSink& sin
 
 policies::ActionResult MoveDriver::finish(double t, MoveSink& sink) {
   const auto& outcome = executor_->current();
-  sink.move_ended(move_, outcome.status, move_end_fields(outcome, move_.item), t);
+  sink.move_ended(move_, outcome.status, move_result_event(outcome, move_.item), t);
   return move_action_result(outcome, move_.item);
 }
 
-nlohmann::json move_end_fields(const planning::MoveOutcome& outcome, const std::string& item) {
-  nlohmann::json data{{"item", item},
-                      {"status", std::string(planning::move_status_name(outcome.status))},
-                      {"reason", outcome.reason()},
-                      {"target_in_reach", outcome.target_in_reach},
-                      {"poses", outcome.poses_sent}};
+events::MoveResult move_result_event(const planning::MoveOutcome& outcome, const std::string& item) {
+  events::MoveResult e;
+  e.item = item;
+  e.status = std::string(planning::move_status_name(outcome.status));
+  e.reason = outcome.reason();
+  e.target_in_reach = outcome.target_in_reach;
+  e.poses = outcome.poses_sent;
   if (outcome.plan.ok) {
-    data["path_length_m"] = outcome.plan.metrics.path_length_m;
-    data["min_clearance_mm"] = outcome.plan.metrics.min_clearance_m * 1000.0;
+    e.path_length_m = outcome.plan.metrics.path_length_m;
+    e.min_clearance_mm = outcome.plan.metrics.min_clearance_m * 1000.0;
   }
   if (outcome.sync.samples > 0) {
-    data["sync_error_mm_mean"] = outcome.sync.mean_error_m * 1000.0;
-    data["sync_error_mm_max"] = outcome.sync.max_error_m * 1000.0;
-    data["sync_lag_ms"] = outcome.sync.best_lag_s * 1000.0;
+    e.sync_error_mm_mean = outcome.sync.mean_error_m * 1000.0;
+    e.sync_error_mm_max = outcome.sync.max_error_m * 1000.0;
+    e.sync_lag_ms = outcome.sync.best_lag_s * 1000.0;
   }
-  if (outcome.poses_sent > 0) data["duration_s"] = outcome.execution_duration_s;
-  data["stolen_by_child"] = outcome.stolen_by_child;
-  return data;
+  if (outcome.poses_sent > 0) e.duration_s = outcome.execution_duration_s;
+  e.stolen_by_child = outcome.stolen_by_child;
+  return e;
 }
 
 policies::ActionResult move_action_result(const planning::MoveOutcome& outcome, const std::string& item) {

@@ -18,7 +18,7 @@ agents::SessionResult session_result(const EpisodeResult& episode) {
   return s;
 }
 
-std::vector<agents::SessionResult> run_population(const Scenario& scenario, int episodes, int threads,
+std::vector<agents::SessionResult> run_population(const scenario::Scenario& scenario, int episodes, int threads,
                                                   const SharedModels& models,
                                                   const std::function<void(int done)>& progress) {
   std::vector<agents::SessionResult> out(static_cast<std::size_t>(std::max(0, episodes)));

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "freeplay/planning/plan.hpp"
-#include "freeplay/runner/scenario.hpp"
+#include "freeplay/scenario/scenario.hpp"
 #include "freeplay/sim/item_catalogue.hpp"
 
 namespace freeplay::runner {
@@ -33,7 +33,7 @@ planning::MoveWorld sandtray_move_world(const sim::Sandtray& tray) {
   return world;
 }
 
-std::unique_ptr<planning::MoveExecutor> make_move_executor(const Scenario& scenario, const Vec2& shoulder_xy,
+std::unique_ptr<planning::MoveExecutor> make_move_executor(const scenario::Scenario& scenario, const Vec2& shoulder_xy,
                                                            double disc_radius) {
   planning::MoveExecutorConfig config = planning::move_executor_config(scenario.planner);
   const double reach = scenario.robot.arm_reach_m;

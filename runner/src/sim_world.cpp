@@ -18,7 +18,7 @@ namespace {
 const Eigen::Vector3d kRobotHead{0.30, 0.20, 0.35};
 const Eigen::Vector3d kExperimenter{-0.60, -0.90, 1.20};
 
-agents::ChildProfile make_profile(const ChildSpec& spec, const agents::Population& population,
+agents::ChildProfile make_profile(const scenario::ChildSpec& spec, const agents::Population& population,
                                   const agents::ChildModelParams& params, Rng rng) {
   const auto base = spec.age ? agents::Population::fixed_age(*spec.age) : population;
   auto profile = base.sample(params.traits, rng);
@@ -32,13 +32,13 @@ agents::ChildProfile make_profile(const ChildSpec& spec, const agents::Populatio
   return profile;
 }
 
-agents::Population population_of(const Scenario& s) {
+agents::Population population_of(const scenario::Scenario& s) {
   switch (s.children.population) {
     case agents::PopulationName::pinsoro_cc: return agents::Population::pinsoro_child_child();
     case agents::PopulationName::pinsoro_cr: return agents::Population::pinsoro_child_robot();
     case agents::PopulationName::pinsoro: break;
   }
-  return s.condition == Condition::ChildRobot ? agents::Population::pinsoro_child_robot()
+  return s.condition == scenario::Condition::ChildRobot ? agents::Population::pinsoro_child_robot()
                                       : agents::Population::pinsoro_child_child();
 }
 
@@ -63,9 +63,9 @@ class SimWorld::BodyFollower final : public planning::ArmFollower {
   RobotBody& body_;
 };
 
-SimWorld::SimWorld(const Scenario& scenario, const SeedSequence& seeds, const SharedModels& models)
+SimWorld::SimWorld(const scenario::Scenario& scenario, const SeedSequence& seeds, const SharedModels& models)
     : scenario_(scenario), models_(models), tray_(models.catalogue, tray_config(), seeds.stream("sandtray")),
-      child_robot_(scenario.condition == Condition::ChildRobot),
+      child_robot_(scenario.condition == scenario::Condition::ChildRobot),
       robot_gaze_point_(sim::kScreenWidthM / 2, -sim::kScreenHeightM / 2, 0.0) {
   for (const auto& item : tray_.items()) agent_item_.push_back(agents::item_index(item.name));
   const auto& params = *models.child_params;

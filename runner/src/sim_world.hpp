@@ -77,7 +77,7 @@ struct RobotGaze {
 class SimWorld final : public RobotWorld {
  public:
   /// Seats the children of `scenario` (and, in child-robot scenarios, the robot's body and perception model).
-  SimWorld(const Scenario& scenario, const SeedSequence& seeds, const SharedModels& models);
+  SimWorld(const scenario::Scenario& scenario, const SeedSequence& seeds, const SharedModels& models);
   ~SimWorld() override;
 
   // ---- protocol (episode.cpp) ----
@@ -124,7 +124,7 @@ class SimWorld final : public RobotWorld {
   planning::ArmFollower* arm() override;
   void move_started(const policies::MoveItem& move, bool running, double t) override;
   void finger(const planning::TimedPose& pose, double t) override;
-  void move_ended(const policies::MoveItem& move, planning::MoveStatus status, nlohmann::json fields,
+  void move_ended(const policies::MoveItem& move, planning::MoveStatus status, events::MoveResult result,
                   double t) override;
   void look_at(const policies::LookAt& look, double t) override;
   void point_at(const Vec2& point, double t) override;
@@ -158,7 +158,7 @@ class SimWorld final : public RobotWorld {
   void robot_finger(const Vec2& p, double t);
   void look_at_point(const Eigen::Vector3d& point);
 
-  const Scenario& scenario_;
+  const scenario::Scenario& scenario_;
   const SharedModels& models_;
   sim::Sandtray tray_;
   bool child_robot_;

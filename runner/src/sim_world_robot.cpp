@@ -92,9 +92,9 @@ void SimWorld::robot_finger(const Vec2& p, double t) {
 void SimWorld::finger(const planning::TimedPose& pose, double t) { robot_finger(pose.position, t); }
 
 void SimWorld::move_ended(const policies::MoveItem& /*move*/, planning::MoveStatus /*status*/,
-                          nlohmann::json fields, double /*t*/) {
+                          events::MoveResult result, double /*t*/) {
   robot_moving_ = false;
-  log_.emit({now(), "robot", "move_result", std::move(fields)});
+  log_.emit({now(), "robot", std::move(result)});
   robot_gaze_ = {RobotGaze::Kind::Tray, ""};
 }
 

@@ -35,22 +35,22 @@ bool in_shard(const std::string& variant_id, int index, int shard_index, int sha
          static_cast<std::uint64_t>(shard_index);
 }
 
-void check_policies(const Suite& suite) {
+void check_policies(const scenario::Suite& suite) {
   for (const auto& variant : suite.variants) {
     const auto& scenario = variant.scenario;
-    if (scenario.kind == ScenarioKind::controller || scenario.condition != Condition::ChildRobot) continue;
+    if (scenario.kind == scenario::ScenarioKind::controller || scenario.condition != scenario::Condition::ChildRobot) continue;
     policies::make_policy(scenario.robot.policy, scenario.robot.params)->check_run(scenario.episodes);
   }
 }
 
-results::ExpectedRun expected_run(const Suite& suite, const std::string& title) {
+results::ExpectedRun expected_run(const scenario::Suite& suite, const std::string& title) {
   results::ExpectedRun expected;
   expected.title = title.empty() ? suite.name : title;
   for (const auto& v : suite.variants) expected.variants.push_back({v.id, v.scenario.episodes, v.scenario.config_hash});
   return expected;
 }
 
-RunReport run_suite(const Suite& suite, const RunOptions& options, const EpisodeFunction& run_episode,
+RunReport run_suite(const scenario::Suite& suite, const RunOptions& options, const EpisodeFunction& run_episode,
                     std::atomic<bool>& stop) {
   if (options.shard_count < 1 || options.shard_index < 0 || options.shard_index >= options.shard_count) {
     throw InputError(fmt::format("shard {}/{} does not exist", options.shard_index + 1, options.shard_count),
@@ -117,7 +117,7 @@ RunReport run_suite(const Suite& suite, const RunOptions& options, const Episode
         r["scenario"] = task.variant->scenario.name;
         r["scenario_file"] = task.variant->scenario.file;
         r["condition"] = std::string(to_string(task.variant->scenario.condition));
-        if (task.variant->scenario.condition == Condition::ChildRobot) r["policy"] = task.variant->scenario.robot.policy;
+        if (task.variant->scenario.condition == scenario::Condition::ChildRobot) r["policy"] = task.variant->scenario.robot.policy;
         r["episode"] = task.index;
         r["episode_id"] = file_id;
         r["seed"] = task.seed;

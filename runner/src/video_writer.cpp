@@ -24,7 +24,7 @@ struct VideoFileSink::Video {
   cv::Mat bgr;
 };
 
-VideoFileSink::VideoFileSink(const Scenario& scenario, std::filesystem::path run_dir) : run_dir_(std::move(run_dir)) {
+VideoFileSink::VideoFileSink(const scenario::Scenario& scenario, std::filesystem::path run_dir) : run_dir_(std::move(run_dir)) {
   for (const auto& camera : scenario.cameras) {
     if (camera.video) rates_[camera.name] = camera.rate_hz;
   }

@@ -27,9 +27,6 @@ const NaoJointVector kSitRelax = {-0.0246, 0.0184,  2.0857,  0.0887, -2.0817, -0
                                   0.1320,  -1.1152, -0.0415, 0.922,  0,       -0.5215, -0.2209, -1.0600, -0.0920,
                                   0.922,   0,       2.0857,  -0.1546, 2.0755, 0.0431,  0.95,   0.1396};
 
-constexpr std::array<std::string_view, 6> kPostureNames = {"StandInit", "Stand", "StandZero",
-                                                            "Crouch",    "Sit",   "SitRelax"};
-
 // nao-and-setup.md §1.5 in rad: |yaw| ascending with the pitch range at each.
 struct HeadLimitRow {
   double yaw, min, max;
@@ -56,11 +53,9 @@ const NaoJointVector& posture_angles(NaoPosture posture) {
   return kStandInit;
 }
 
-std::string_view posture_name(NaoPosture posture) { return kPostureNames.at(static_cast<size_t>(posture)); }
-
 NaoPosture posture_from_name(std::string_view name) {
-  for (size_t i = 0; i < kPostureNames.size(); ++i) {
-    if (kPostureNames[i] == name) return kAllNaoPostures[i];
+  for (size_t i = 0; i < kNaoPostureNames.size(); ++i) {
+    if (kNaoPostureNames[i] == name) return kAllNaoPostures[i];
   }
   throw InputError("unknown posture '" + std::string(name) + "'", "posture",
                    "StandInit, Stand, StandZero, Crouch, Sit, SitRelax");

@@ -14,7 +14,7 @@
 
 #include "freeplay/core/error.hpp"
 #include "freeplay/core/rng.hpp"
-#include "freeplay/runner/suite.hpp"
+#include "freeplay/scenario/suite.hpp"
 #include "freeplay/runner/suite_runner.hpp"
 #include "freeplay/results/run_folder.hpp"
 
@@ -70,7 +70,7 @@ int run(int argc, char** argv) {
       throw InputError("unknown option", args[i]);
     }
   }
-  const auto suite = runner::load_suite(suite_file, overrides);
+  const auto suite = scenario::load_suite(suite_file, overrides);
   std::atomic<int> counter{0};
   std::atomic<bool> stop{false};
   runner::run_suite(

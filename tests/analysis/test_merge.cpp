@@ -16,16 +16,16 @@ namespace {
 
 namespace fs = std::filesystem;
 
-runner::Suite tiny_suite() {
-  runner::Suite suite;
+scenario::Suite tiny_suite() {
+  scenario::Suite suite;
   suite.name = "tiny";
   const std::vector<std::pair<std::string, int>> variants = {
       {"child-child", 7}, {"child-robot-asocial", 5}, {"child-robot-social[robot.params.x=1]", 6}};
   for (const auto& [id, episodes] : variants) {
-    runner::SuiteVariant v;
+    scenario::SuiteVariant v;
     v.id = id;
     v.scenario.name = id.substr(0, id.find('['));
-    v.scenario.condition = id == "child-child" ? runner::Condition::ChildChild : runner::Condition::ChildRobot;
+    v.scenario.condition = id == "child-child" ? scenario::Condition::ChildChild : scenario::Condition::ChildRobot;
     v.scenario.robot.policy = id.find("social") != std::string::npos && id.find("asocial") == std::string::npos ? "social"
                                                                                                          : "asocial";
     v.scenario.episodes = episodes;
@@ -54,7 +54,7 @@ runner::EpisodeOutput fake_episode(const runner::EpisodeTask& task, int invocati
 }
 
 /// Runs shard `index` of `count` (1-based in run.json, like `--shard I/N`) into `dir`, writing run.json.
-void run_shard(const runner::Suite& suite, const fs::path& dir, int index, int count, int invocation,
+void run_shard(const scenario::Suite& suite, const fs::path& dir, int index, int count, int invocation,
                const std::vector<std::string>& overrides = {}) {
   runner::RunOptions options;
   options.out = dir;
@@ -115,7 +115,7 @@ class Merge : public ::testing::Test {
   fs::path shard(int i) const { return root / ("shard-" + std::to_string(i)); }
 
   fs::path root;
-  runner::Suite suite;
+  scenario::Suite suite;
 };
 
 TEST_F(Merge, ShardsMergeIntoTheSingleMachineRun) {

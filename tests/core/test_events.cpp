@@ -17,6 +17,54 @@ struct Sample {
   json data;                     // the data the string-typed event carried
 };
 
+events::MoveResult move_failed() {
+  events::MoveResult e;
+  e.item = "zebra";
+  e.status = "aborted";
+  e.reason = "no path";
+  return e;
+}
+
+events::MoveResult move_succeeded() {
+  events::MoveResult e;
+  e.item = "ball";
+  e.status = "succeeded";
+  e.target_in_reach = true;
+  e.poses = 12;
+  e.path_length_m = 0.25;
+  e.min_clearance_mm = 31.5;
+  e.sync_error_mm_mean = 4.5;
+  e.sync_error_mm_max = 9.25;
+  e.sync_lag_ms = 100.0;
+  e.duration_s = 1.2;
+  e.stolen_by_child = true;
+  return e;
+}
+
+events::TargetEnd point_target_end() {
+  events::TargetEnd e;
+  e.kind = "point";
+  e.t_start = 0.5;
+  e.t_end = 2.0;
+  e.point = std::vector<double>{0.1, -0.2};
+  e.reachable = true;
+  e.ik_error_mm = 0.5;
+  e.error_mm = 1.5;
+  e.settled = true;
+  e.settle_s = 0.75;
+  return e;
+}
+
+events::TargetEnd wait_target_end() {
+  events::TargetEnd e;
+  e.index = 1;
+  e.kind = "wait";
+  e.t_start = 2.0;
+  e.t_end = 3.0;
+  e.wait_s = 1.0;
+  return e;
+}
+
 std::vector<Sample> samples() {
   return {
       {events::ItemGrabbed{"zebra", 3, {"robot", "touch4"}}, "item_grabbed",
@@ -55,8 +103,22 @@ std::vector<Sample> samples() {
       {events::SignalReceived{"start_freeplay", "tutorial"}, "signal_received",
        {{"name", "start_freeplay"}, {"stage", "tutorial"}}},
       {events::FreeplayEnded{"cap", 1200.0}, "freeplay_ended", {{"ended_by", "cap"}, {"duration_s", 1200.0}}},
-      {events::Other{"move_result", {{"item", "zebra"}, {"status", "succeeded"}}}, "move_result",
+      {events::Other{"web_command", {{"item", "zebra"}, {"status", "succeeded"}}}, "web_command",
        {{"item", "zebra"}, {"status", "succeeded"}}},
+      {move_failed(), "move_result",
+       {{"item", "zebra"}, {"status", "aborted"}, {"reason", "no path"}, {"target_in_reach", false},
+        {"poses", std::size_t{0}}, {"stolen_by_child", false}}},
+      {move_succeeded(), "move_result",
+       {{"item", "ball"}, {"status", "succeeded"}, {"reason", ""}, {"target_in_reach", true},
+        {"poses", std::size_t{12}}, {"path_length_m", 0.25}, {"min_clearance_mm", 31.5},
+        {"sync_error_mm_mean", 4.5}, {"sync_error_mm_max", 9.25}, {"sync_lag_ms", 100.0}, {"duration_s", 1.2},
+        {"stolen_by_child", true}}},
+      {events::TargetStart{3, "point"}, "target_start", {{"index", std::size_t{3}}, {"kind", "point"}}},
+      {point_target_end(), "target_end",
+       {{"index", std::size_t{0}}, {"kind", "point"}, {"t_start", 0.5}, {"t_end", 2.0}, {"point", {0.1, -0.2}},
+        {"reachable", true}, {"ik_error_mm", 0.5}, {"error_mm", 1.5}, {"settled", true}, {"settle_s", 0.75}}},
+      {wait_target_end(), "target_end",
+       {{"index", std::size_t{1}}, {"kind", "wait"}, {"t_start", 2.0}, {"t_end", 3.0}, {"wait_s", 1.0}}},
   };
 }
 
@@ -92,6 +154,8 @@ TEST(Events, DataThatATypedEventWouldWriteDifferentlyStaysOther) {
       {"item_grabbed", {{"holder", "hand"}, {"item", "ball"}, {"shared_with", json::array()}}},  // an unknown holder
       {"cancel", {{"why", "x"}}},                                                 // data where there is none
       {"releasing_zebra", nullptr},                                               // an unknown type
+      {"move_result", {{"by", "wizard"}, {"item", "ball"}, {"status", "succeeded"}, {"target", {0.1, 0.2}}}},  // the wizard's
+      {"target_end", {{"index", 0}, {"kind", "point"}, {"t_start", 0.5}, {"t_end", 1.0}, {"settle_s", nullptr}}},  // NaN
   };
   for (const auto& [type, data] : odd) {
     const Event e{0.5, "x", type, data};

@@ -29,8 +29,8 @@ bool have_espeak() {
 #define SKIP_WITHOUT_ESPEAK() \
   if (!have_espeak()) GTEST_SKIP() << "this binary was built without espeak-ng (FREEPLAY_WITH_ESPEAK=OFF)"
 
-runner::Scenario scenario(const std::string& record) {
-  return runner::scenario_from_document(parse_yaml(
+scenario::Scenario test_scenario(const std::string& record) {
+  return scenario::scenario_from_document(parse_yaml(
       fmt::format("name: tiny\ncondition: child-robot\nrecord: {}\n"
                   "protocol: {{greeting_s: 1, tutorial_s: 1, freeplay_cap_s: 20, debriefing_s: 1}}\n",
                   record),
@@ -42,7 +42,7 @@ struct Recorded {
   std::vector<float> purple;  // the purple microphone's WAV
 };
 
-Recorded record(const std::string& name, const runner::Scenario& s, std::uint64_t seed = 7) {
+Recorded record(const std::string& name, const scenario::Scenario& s, std::uint64_t seed = 7) {
   const auto dir = std::filesystem::temp_directory_path() /
                    ("freeplay-voice-" + name + "-" + std::to_string(static_cast<long>(::getpid())));
   std::filesystem::remove_all(dir);
@@ -94,7 +94,7 @@ Utterance utterance(double pitch_hz, const std::string& text = "") {
 
 TEST(AudioVoice, EspeakEveryUtteranceIsHeardWhereTheEventsSay) {
   SKIP_WITHOUT_ESPEAK();
-  const auto r = record("heard", scenario("{voice: espeak}"));
+  const auto r = record("heard", test_scenario("{voice: espeak}"));
   EXPECT_NEAR(static_cast<double>(r.purple.size()), r.result.simulated_s * kAudioRate, 2.0);
   EXPECT_GT(audio_checks::expect_utterances_heard(r.purple, r.result.events.events()), 0);
 }
@@ -102,7 +102,7 @@ TEST(AudioVoice, EspeakEveryUtteranceIsHeardWhereTheEventsSay) {
 TEST(AudioVoice, EspeakSameSeedGivesTheSameSamples) {
   SKIP_WITHOUT_ESPEAK();
   // A whole episode twice: the same WAV.
-  const auto s = scenario("{voice: espeak}");
+  const auto s = test_scenario("{voice: espeak}");
   EXPECT_EQ(record("first", s).purple, record("second", s).purple);
   // One utterance, whatever was said before and on whichever thread.
   const auto voice = make_voice("espeak");
@@ -132,7 +132,7 @@ TEST(AudioVoice, EspeakSpeaksAtTheSpeakersPitchWithinTheUtterance) {
 
 TEST(AudioVoice, UnknownOrMissingVoicesAreRefusedNamingTheKeyAndTheVoices) {
   try {
-    (void)scenario("{voice: robotic}");
+    (void)test_scenario("{voice: robotic}");
     ADD_FAILURE() << "record.voice: robotic was accepted";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("voice"), std::string::npos) << e.what();
@@ -149,7 +149,7 @@ TEST(AudioVoice, UnknownOrMissingVoicesAreRefusedNamingTheKeyAndTheVoices) {
   if (have_espeak()) {
     EXPECT_TRUE(make_voice("espeak"));
   } else {  // a binary without espeak-ng says so when a scenario asks for it
-    EXPECT_THROW(BagRecorder(std::filesystem::temp_directory_path(), scenario("{voice: espeak}").recording), InputError);
+    EXPECT_THROW(BagRecorder(std::filesystem::temp_directory_path(), test_scenario("{voice: espeak}").recording), InputError);
   }
 }
 

@@ -21,8 +21,8 @@ namespace {
 
 const runner::SharedModels& models() { return runner::SharedModels::shipped(); }
 
-runner::Scenario short_session(const std::string& condition) {
-  return runner::scenario_from_document(parse_yaml(
+scenario::Scenario short_session(const std::string& condition) {
+  return scenario::scenario_from_document(parse_yaml(
       fmt::format("name: replayed\ncondition: {}\nrecord: true\n"
                   "protocol: {{greeting_s: 1, tutorial_s: 1, freeplay_cap_s: 40, debriefing_s: 1}}\n",
                   condition),

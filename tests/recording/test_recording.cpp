@@ -37,9 +37,9 @@ const runner::SharedModels& models() { return runner::SharedModels::shipped(); }
 
 // The tiny protocol of the brief: greeting 1 s, tutorial 1 s, free play 10 s, debriefing 1 s; `record` is the
 // scenario's record setting.
-runner::Scenario tiny(const std::string& condition, const std::string& extra = "", double freeplay_cap_s = 10,
+scenario::Scenario tiny(const std::string& condition, const std::string& extra = "", double freeplay_cap_s = 10,
                       const std::string& record = "true") {
-  return runner::scenario_from_document(parse_yaml(
+  return scenario::scenario_from_document(parse_yaml(
       fmt::format("name: tiny\ncondition: {}\nrecord: {}\n"
                   "protocol: {{greeting_s: 1, tutorial_s: 1, freeplay_cap_s: {}, debriefing_s: 1}}\n{}",
                   condition, record, freeplay_cap_s, extra),
@@ -629,19 +629,19 @@ TEST(CameraTopics, RealNamesAndAClearErrorForOthers) {
 
 TEST(RecordSchema, AcceptsTrueAndAMapAndRefusesBadValues) {
   EXPECT_TRUE(tiny("child-robot").record);
-  const auto mapped = runner::scenario_from_document(
+  const auto mapped = scenario::scenario_from_document(
       parse_yaml("name: t\ncondition: child-robot\nrecord: {jpeg_quality: 75, compression: lz4}\n", "t.yaml"));
   EXPECT_TRUE(mapped.record);
   EXPECT_EQ(mapped.recording.jpeg_quality, 75);
   EXPECT_EQ(mapped.recording.compression, "lz4");
   EXPECT_EQ(mapped.recording.png_level, 3);
-  const auto off = runner::scenario_from_document(
+  const auto off = scenario::scenario_from_document(
       parse_yaml("name: t\ncondition: child-robot\nrecord: {bag: false}\n", "t.yaml"));
   EXPECT_FALSE(off.record);
   for (const char* bad : {"record: 3", "record: {jpeg_quality: 200}", "record: {codec: x}", "record: [true]",
                           "record: {compression: zip}"}) {
     try {
-      runner::scenario_from_document(parse_yaml(fmt::format("name: t\ncondition: child-robot\n{}\n", bad), "t.yaml"));
+      scenario::scenario_from_document(parse_yaml(fmt::format("name: t\ncondition: child-robot\n{}\n", bad), "t.yaml"));
       ADD_FAILURE() << bad << " must be refused";
     } catch (const InputError& e) {
       EXPECT_NE(std::string(e.what()).find("record"), std::string::npos) << e.what();
@@ -655,7 +655,7 @@ namespace {
 // Writes camera frames straight to a recorder with `threads` encoder threads: purple with depth, env_camera without,
 // each image repeated for three 30 Hz stamps (as the rig hands over a 10 Hz tick's image); returns the bag's path.
 std::filesystem::path record_frames(const std::filesystem::path& dir, int threads) {
-  runner::RecordSettings settings;
+  scenario::RecordSettings settings;
   settings.encoder_threads = threads;
   BagRecorder recorder(dir / "sessions", settings);
   recorder.begin({nullptr, "frames-0000", 1});
@@ -703,7 +703,7 @@ TEST(BagRecorder, EncoderThreadsLeaveTheBagByteForByteTheSame) {
 TEST(BagRecorder, AnImageThatFailsToEncodeIsReportedAndTheBagIsClosed) {
   for (const int threads : {0, 2}) {
     const auto dir = fresh_dir("bad-frame-" + std::to_string(threads));
-    runner::RecordSettings settings;
+    scenario::RecordSettings settings;
     settings.encoder_threads = threads;
     BagRecorder recorder(dir / "sessions", settings);
     recorder.begin({nullptr, "bad-0000", 1});

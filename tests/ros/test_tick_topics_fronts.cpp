@@ -114,7 +114,7 @@ std::set<std::string> shared(const Streams& a, const Streams& b) {
 }
 
 TEST(TickTopicsFronts, TheBagTheLiveGraphAndFoxgloveCarryTheSameMessagesStampsAndOrder) {
-  const auto scenario = runner::scenario_from_document(parse_yaml(
+  const auto scenario = scenario::scenario_from_document(parse_yaml(
       "name: fronts\ncondition: child-robot\nrecord: true\n"
       "protocol: {greeting_s: 0.5, tutorial_s: 0.5, freeplay_cap_s: 20, debriefing_s: 0.5}\n",
       "fronts.yaml"));

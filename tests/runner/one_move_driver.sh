@@ -6,7 +6,7 @@
 # Usage: one_move_driver.sh SOURCE_DIR
 set -uo pipefail
 cd "$1" || exit 2
-dirs=(agents analysis cli core localisation policies python recording results ros runner sim stage web)
+dirs=(agents analysis cli core localisation policies python recording results ros runner scenario sim stage web)
 status=0
 drivers=$(grep -rn -E 'MoveOutputs|executor_?(->|\.)(start|step|cancel)\(' --include='*.cpp' --include='*.hpp' \
   "${dirs[@]}" | grep -v '^runner/src/move_driver\.cpp:')

@@ -18,6 +18,7 @@
 
 using namespace freeplay;
 using namespace freeplay::runner;
+using namespace freeplay::scenario;
 
 namespace {
 

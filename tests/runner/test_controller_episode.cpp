@@ -11,9 +11,11 @@
 #include "freeplay/core/error.hpp"
 #include "freeplay/runner/controller_episode.hpp"
 #include "freeplay/runner/episode.hpp"
-#include "freeplay/runner/scenario.hpp"
+#include "freeplay/scenario/scenario.hpp"
 
 namespace freeplay::runner {
+using namespace freeplay::scenario;
+
 namespace {
 
 const SharedModels& models() { return SharedModels::shipped(); }

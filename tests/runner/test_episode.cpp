@@ -11,13 +11,14 @@
 
 using namespace freeplay;
 using namespace freeplay::runner;
+using namespace freeplay::scenario;
 
 namespace {
 
 const SharedModels& models() { return SharedModels::shipped(); }
 
 // Short free play (the children usually quit later) keeps these tests fast; the protocol stages are free.
-Scenario scenario(const std::string& condition, const std::string& policy = "asocial", double cap_s = 240) {
+Scenario test_scenario(const std::string& condition, const std::string& policy = "asocial", double cap_s = 240) {
   const std::string text = fmt::format(
       "name: t\ncondition: {}\nrobot: {{policy: {}}}\nprotocol: {{freeplay_cap_s: {}}}\n", condition, policy, cap_s);
   return scenario_from_document(parse_yaml(text, "test.yaml"));
@@ -28,7 +29,7 @@ Scenario scenario(const std::string& condition, const std::string& policy = "aso
 TEST(Episode, SameSeedGivesAnIdenticalEventLog) {
   const std::atomic<bool> stop{false};
   for (const auto* condition : {"child-child", "child-robot"}) {
-    const auto s = scenario(condition);
+    const auto s = test_scenario(condition);
     const auto a = run_episode({.scenario = s, .seed = 11, .models = models(), .stop = stop});
     const auto b = run_episode({.scenario = s, .seed = 11, .models = models(), .stop = stop});
     ASSERT_GT(a.events.size(), 20u) << condition;
@@ -42,7 +43,7 @@ TEST(Episode, SameSeedGivesAnIdenticalEventLog) {
 TEST(Episode, ChildRobotEpisodeFollowsTheProtocolAndRecordsMetrics) {
   const std::atomic<bool> stop{false};
   const auto r =
-      run_episode({.scenario = scenario("child-robot", "asocial", 300), .seed = 5, .models = models(), .stop = stop});
+      run_episode({.scenario = test_scenario("child-robot", "asocial", 300), .seed = 5, .models = models(), .stop = stop});
   std::vector<std::string> stages;
   int moves = 0;
   for (const auto& e : r.events.events()) {
@@ -68,7 +69,7 @@ TEST(Episode, TheSocialPolicyNeverGrabsAnItemAChildHolds) {
   int robot_grabs = 0;
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
     const auto r = run_episode(
-        {.scenario = scenario("child-robot", "social", 400), .seed = seed, .models = models(), .stop = stop});
+        {.scenario = test_scenario("child-robot", "social", 400), .seed = seed, .models = models(), .stop = stop});
     for (const auto& e : r.events.events()) {
       if (e.type() != "item_grabbed" || e.data().value("holder", "") != "robot") continue;
       ++robot_grabs;
@@ -80,7 +81,7 @@ TEST(Episode, TheSocialPolicyNeverGrabsAnItemAChildHolds) {
 
 TEST(Episode, StopFlagAbortsAnEpisode) {
   const std::atomic<bool> stop{true};
-  EXPECT_TRUE(run_episode({.scenario = scenario("child-child"), .seed = 1, .models = models(), .stop = stop}).aborted);
+  EXPECT_TRUE(run_episode({.scenario = test_scenario("child-child"), .seed = 1, .models = models(), .stop = stop}).aborted);
 }
 
 TEST(Episode, OneAndTwoWorkersGiveIdenticalRunFolders) {

@@ -6,6 +6,7 @@
 
 using namespace freeplay;
 using namespace freeplay::runner;
+using namespace freeplay::scenario;
 
 namespace {
 

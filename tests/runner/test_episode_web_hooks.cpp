@@ -10,10 +10,11 @@
 
 using namespace freeplay;
 using namespace freeplay::runner;
+using namespace freeplay::scenario;
 
 namespace {
 
-Scenario scenario(const std::string& condition) {
+Scenario test_scenario(const std::string& condition) {
   return scenario_from_document(parse_yaml(
       "name: t\ncondition: " + condition +
           "\nprotocol: {greeting_s: 1, tutorial_s: 1, freeplay_cap_s: 60, debriefing_s: 1}\n",
@@ -59,7 +60,7 @@ class Speaker final : public RobotActionSource {
 }  // namespace
 
 TEST(EpisodeWebHooks, TheSnapshotCarriesTheCodersCurrentLabelsFromFreePlayOn) {
-  const auto s = scenario("child-child");
+  const auto s = test_scenario("child-child");
   std::vector<Keep::Tick> ticks;
   EpisodeObservers observers;
   observers.push_back(std::make_unique<Keep>(ticks));
@@ -96,7 +97,7 @@ TEST(EpisodeWebHooks, TheSnapshotCarriesTheCodersCurrentLabelsFromFreePlayOn) {
 
 TEST(EpisodeWebHooks, TheSnapshotCarriesTheChildsHiddenStateAsItsOwnTimelineHasIt) {
   // Kept apart from what the cameras and the coder see: freeplay.Env offers it only as privileged information.
-  const auto s = scenario("child-child");
+  const auto s = test_scenario("child-child");
   struct Hidden {
     std::string stage;
     std::array<std::string, 3> labels;
@@ -140,7 +141,7 @@ TEST(EpisodeWebHooks, TheSnapshotCarriesTheChildsHiddenStateAsItsOwnTimelineHasI
 }
 
 TEST(EpisodeWebHooks, AnExternalRobotsSpeechIsTheRobotsSayHeardInTheRoom) {
-  const auto s = scenario("child-robot");
+  const auto s = test_scenario("child-robot");
   std::vector<Keep::Tick> ticks;
   EpisodeObservers observers;
   observers.push_back(std::make_unique<Keep>(ticks));

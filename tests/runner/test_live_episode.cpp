@@ -12,6 +12,7 @@
 
 using namespace freeplay;
 using namespace freeplay::runner;
+using namespace freeplay::scenario;
 using namespace std::chrono_literals;
 
 namespace {

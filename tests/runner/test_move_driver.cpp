@@ -20,10 +20,10 @@ class BallSink final : public MoveSink {
     ball = pose.position;  // the game drags the item under the finger
   }
   void progress(int percentage) override { last_progress = percentage; }
-  void move_ended(const policies::MoveItem& move, planning::MoveStatus status, nlohmann::json fields,
+  void move_ended(const policies::MoveItem& move, planning::MoveStatus status, events::MoveResult result,
                   double) override {
     calls.push_back("ended " + move.item + " " + std::string(planning::move_status_name(status)));
-    last_fields = std::move(fields);
+    last_result = std::move(result);
   }
 
   Vec2 ball{0.20, -0.15};
@@ -31,7 +31,7 @@ class BallSink final : public MoveSink {
   int poses = 0;
   int last_progress = -1;
   std::vector<std::string> calls;
-  nlohmann::json last_fields;
+  events::MoveResult last_result;
 };
 
 MoveDriver make_driver(bool check_child_holding = false) {
@@ -63,9 +63,9 @@ TEST(MoveDriver, AMoveStreamsItsPosesThroughTheSinkAndEndsOnce) {
   EXPECT_EQ(sink.poses, driver.outcome().poses_sent);
   EXPECT_GT(sink.last_progress, 50);
   EXPECT_NEAR(sink.ball.x(), 0.40, 1e-6);
-  EXPECT_EQ(sink.last_fields["status"], "succeeded");
-  EXPECT_EQ(sink.last_fields["poses"], sink.poses);
-  EXPECT_TRUE(sink.last_fields.contains("path_length_m"));
+  EXPECT_EQ(sink.last_result.status, "succeeded");
+  EXPECT_EQ(sink.last_result.poses, static_cast<std::size_t>(sink.poses));
+  EXPECT_TRUE(sink.last_result.path_length_m.has_value());
   EXPECT_FALSE(driver.step(100.0, sink).has_value());  // nothing more to report
 }
 

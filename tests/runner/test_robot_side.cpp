@@ -44,10 +44,10 @@ class RecordingWorld final : public RobotWorld {
     ++poses;
     ball = pose.position;  // the game drags the item under the finger
   }
-  void move_ended(const policies::MoveItem& move, planning::MoveStatus status, nlohmann::json fields,
+  void move_ended(const policies::MoveItem& move, planning::MoveStatus status, events::MoveResult result,
                   double) override {
     calls.push_back("move_ended " + move.item + " " + std::string(planning::move_status_name(status)));
-    last_fields = std::move(fields);
+    last_result = std::move(result);
   }
   void look_at(const policies::LookAt& look, double) override { calls.push_back("look_at " + look.child.value_or("")); }
   void point_at(const Vec2&, double) override { calls.push_back("point_at"); }
@@ -62,7 +62,7 @@ class RecordingWorld final : public RobotWorld {
   int poses = 0;
   double said_duration = 0.0;
   std::vector<std::string> calls;
-  nlohmann::json last_fields;
+  events::MoveResult last_result;
 };
 
 RobotSide make_side(ListPolicy*& policy, std::map<int, policies::Action> actions, BadMove bad_move) {
@@ -90,7 +90,7 @@ TEST(RobotSide, AMoveStreamsPosesAndEndsWithItsMeasurements) {
   EXPECT_EQ(world.calls[0], "move_started ball running");
   EXPECT_EQ(world.calls[1], "move_ended ball succeeded");
   EXPECT_GT(world.poses, 3);
-  EXPECT_GT(world.last_fields.value("path_length_m", 0.0), 0.15);
+  EXPECT_GT(world.last_result.path_length_m.value_or(0.0), 0.15);
   ASSERT_EQ(policy->results.size(), 1U);
   EXPECT_EQ(policy->results[0].kind, policies::ActionResult::Kind::MoveSucceeded);
   EXPECT_TRUE(policy->seen_moving[1]);  // the policy sees its own move running

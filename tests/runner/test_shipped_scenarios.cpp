@@ -4,9 +4,9 @@
 #include <filesystem>
 
 #include "freeplay/policies/play_policy.hpp"
-#include "freeplay/runner/suite.hpp"
+#include "freeplay/scenario/suite.hpp"
 
-using namespace freeplay::runner;
+using namespace freeplay::scenario;
 
 namespace {
 std::filesystem::path scenarios_dir() {

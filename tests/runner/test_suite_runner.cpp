@@ -13,6 +13,7 @@
 
 using namespace freeplay;
 using namespace freeplay::runner;
+using namespace freeplay::scenario;
 
 namespace {
 

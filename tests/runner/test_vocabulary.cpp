@@ -8,7 +8,7 @@
 #include "freeplay/agents/item_names.hpp"
 #include "freeplay/planning/plan.hpp"
 #include "freeplay/policies/play_policy.hpp"
-#include "freeplay/runner/settings.hpp"
+#include "freeplay/scenario/settings.hpp"
 #include "freeplay/sim/item_catalogue.hpp"
 #include "freeplay/stage/camera_names.hpp"
 
@@ -24,7 +24,7 @@ std::vector<std::string> sorted(std::vector<std::string> names) {
 }  // namespace
 
 TEST(ScenarioVocabulary, ItemsAreTheCataloguesInThePolicyOrder) {
-  const runner::ScenarioVocabulary vocabulary;
+  const scenario::ScenarioVocabulary vocabulary;
   EXPECT_EQ(vocabulary.items, std::vector<std::string>(agents::kItemNames.begin(), agents::kItemNames.end()));
   std::vector<std::string> catalogue;
   const auto loaded = sim::ItemCatalogue::load_default();
@@ -33,7 +33,7 @@ TEST(ScenarioVocabulary, ItemsAreTheCataloguesInThePolicyOrder) {
 }
 
 TEST(ScenarioVocabulary, PlannersCamerasAndPoliciesComeFromTheirOwners) {
-  const runner::ScenarioVocabulary vocabulary;
+  const scenario::ScenarioVocabulary vocabulary;
   EXPECT_EQ(sorted(vocabulary.planners), planning::planner_names());
   EXPECT_EQ(vocabulary.cameras, stage::real_camera_names());
   EXPECT_EQ(vocabulary.policies, policies::policy_names());  // policies::kPolicyNames: every registered one

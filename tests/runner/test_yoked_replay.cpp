@@ -12,13 +12,14 @@
 #include "freeplay/core/error.hpp"
 #include "freeplay/policies/play_policy.hpp"
 #include "freeplay/runner/episode.hpp"
-#include "freeplay/runner/suite.hpp"
+#include "freeplay/scenario/suite.hpp"
 #include "freeplay/runner/suite_runner.hpp"
 #include "freeplay/results/run_folder.hpp"
 #include "../scratch_dir.hpp"
 
 using namespace freeplay;
 using namespace freeplay::runner;
+using namespace freeplay::scenario;
 namespace fs = std::filesystem;
 
 namespace {

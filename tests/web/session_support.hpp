@@ -5,14 +5,14 @@
 #include <string>
 
 #include "freeplay/core/yaml_schema.hpp"
-#include "freeplay/runner/scenario.hpp"
+#include "freeplay/scenario/scenario.hpp"
 #include "freeplay/web/web_session.hpp"
 
 namespace freeplay::web::test_session {
 
 /// The scenario of the YAML `text` (named test.yaml in errors).
-inline runner::Scenario scenario(const std::string& text) {
-  return runner::scenario_from_document(parse_yaml(text, "test.yaml"));
+inline scenario::Scenario scenario(const std::string& text) {
+  return scenario::scenario_from_document(parse_yaml(text, "test.yaml"));
 }
 
 /// A session on an ephemeral loopback port at `rate`× real time that writes into the emptied temporary folder

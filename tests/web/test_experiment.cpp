@@ -19,7 +19,7 @@ TEST(WebExperiment, DemographicsMarkersAndLikertWriteExperimentYaml) {
   const auto path = dir / "experiment.yaml";
   std::filesystem::remove(path);
   SessionLog log;
-  ExperimentManager manager(path, freeplay::runner::Condition::ChildChild, 1500000000, log);  // 2017-07-14 02:40 UTC
+  ExperimentManager manager(path, freeplay::scenario::Condition::ChildChild, 1500000000, log);  // 2017-07-14 02:40 UTC
   manager.apply(command(R"({"type":"demographics","purple":{"age":7,"gender":"female","tablet_familiarity":"2"},
                             "yellow":{"age":6,"gender":"male","tablet_familiarity":"na"}})"),
                 -10.0, 5.0);
@@ -54,7 +54,7 @@ TEST(WebExperiment, DemographicsMarkersAndLikertWriteExperimentYaml) {
 TEST(WebExperiment, TheConditionCommandSwitchesTheSessionsCondition) {
   SessionLog log;
   const auto path = std::filesystem::temp_directory_path() / "freeplay-web-experiment-switch.yaml";
-  ExperimentManager manager(path, freeplay::runner::Condition::ChildChild, 1500000000, log);
+  ExperimentManager manager(path, freeplay::scenario::Condition::ChildChild, 1500000000, log);
   EXPECT_EQ(manager.state()["condition"], "childchild");
   manager.apply(command(R"({"type":"condition","condition":"childrobot"})"), -1.0, 1.0);
   EXPECT_EQ(manager.state()["condition"], "childrobot");
@@ -69,7 +69,7 @@ TEST(WebExperiment, TheConditionCommandSwitchesTheSessionsCondition) {
 TEST(WebExperiment, ChildRobotSessionsHaveNoYellowChild) {
   SessionLog log;
   const auto path = std::filesystem::temp_directory_path() / "freeplay-web-experiment-cr.yaml";
-  ExperimentManager manager(path, freeplay::runner::Condition::ChildRobot, 1500000000, log);
+  ExperimentManager manager(path, freeplay::scenario::Condition::ChildRobot, 1500000000, log);
   EXPECT_THROW(manager.apply(command(R"({"type":"demographics","purple":{"age":7,"gender":"female","tablet_familiarity":"2"},
                                        "yellow":{"age":6,"gender":"male","tablet_familiarity":"na"}})"),
                              -1.0, 1.0),

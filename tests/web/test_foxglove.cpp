@@ -114,7 +114,7 @@ TEST(WebFoxglove, ASessionWithARobotAndCamerasAdvertisesTheirChannels) {
 
 TEST(WebFoxglove, TheNaosJointsAndLinksAndACameraFrameAreRos1Messages) {
   // The Nao as an episode's first tick shows it.
-  const auto s = runner::scenario_from_document(parse_yaml(
+  const auto s = scenario::scenario_from_document(parse_yaml(
       "name: t\ncondition: child-robot\nprotocol: {greeting_s: 0.2, tutorial_s: 0.1, freeplay_cap_s: 1, debriefing_s: 0.1}\n",
       "test.yaml"));
   struct First final : runner::EpisodeObserver {

@@ -13,12 +13,12 @@ using namespace freeplay::web;
 
 namespace {
 
-runner::Scenario scenario(double cap_s, const std::string& policy = "asocial") {
+scenario::Scenario test_scenario(double cap_s, const std::string& policy = "asocial") {
   const std::string text = fmt::format(
       "name: t\ncondition: child-robot\nrobot: {{policy: {}}}\nprotocol: {{freeplay_cap_s: {}}}\n", policy, cap_s);
-  runner::ScenarioVocabulary vocabulary;
+  scenario::ScenarioVocabulary vocabulary;
   vocabulary.policies = policies::policy_names();  // the shipped ones and this test's
-  return runner::scenario_from_document(parse_yaml(text, "test.yaml"), {}, vocabulary);
+  return scenario::scenario_from_document(parse_yaml(text, "test.yaml"), {}, vocabulary);
 }
 
 // A policy that perceives the children and counts the observations that held a perceived child.
@@ -80,7 +80,7 @@ struct Run {
 Run run(RobotMode mode, const std::vector<std::string>& commands,
         const std::function<void(WizardSource&, SessionLog&, const runner::EpisodeSnapshot&)>& hook = {},
         const std::string& policy = "asocial") {
-  const auto s = scenario(30, policy);
+  const auto s = test_scenario(30, policy);
   SessionLog log;
   WizardSource robot(s, log, mode, 2.0);
   for (const auto& c : commands) robot.push(command(c));

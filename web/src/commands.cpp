@@ -8,8 +8,8 @@
 #include <limits>
 #include <set>
 
-#include "freeplay/runner/scenario.hpp"
-#include "freeplay/runner/settings.hpp"
+#include "freeplay/scenario/scenario.hpp"
+#include "freeplay/scenario/settings.hpp"
 #include "freeplay/sim/sandtray.hpp"
 #include "freeplay/sim/screen.hpp"
 #include "freeplay/stage/camera_names.hpp"
@@ -195,8 +195,8 @@ Command parse_command(const std::string& body, const std::vector<std::string>& i
     if (!sim::signal_from_name(name)) f.fail("name", fmt::format("= \"{}\" is not a signal", name), sim::signal_names());
     a["name"] = name;
   } else if (c.type == "condition") {
-    a["condition"] = f.one_of("condition", {std::string(runner::pinsoro_name(runner::Condition::ChildChild)),
-                                            std::string(runner::pinsoro_name(runner::Condition::ChildRobot))});
+    a["condition"] = f.one_of("condition", {std::string(scenario::pinsoro_name(scenario::Condition::ChildChild)),
+                                            std::string(scenario::pinsoro_name(scenario::Condition::ChildRobot))});
   } else if (c.type == "demographics") {
     a["purple"] = child_record(f.object("purple"), "purple");
     if (f.has("yellow")) a["yellow"] = child_record(f.object("yellow"), "yellow");

@@ -10,7 +10,7 @@
 
 namespace freeplay::web {
 
-ExperimentManager::ExperimentManager(std::filesystem::path path, runner::Condition condition,
+ExperimentManager::ExperimentManager(std::filesystem::path path, scenario::Condition condition,
                                      std::int64_t created_unix_s, SessionLog& log)
     : path_(std::move(path)), log_(log) {
   const std::time_t created = created_unix_s;

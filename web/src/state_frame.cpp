@@ -29,7 +29,7 @@ std::string holder_name(sim::Holder::Kind kind) {
 
 }  // namespace
 
-nlohmann::json scene_json(const sim::ItemCatalogue& catalogue, const runner::Scenario& scenario) {
+nlohmann::json scene_json(const sim::ItemCatalogue& catalogue, const scenario::Scenario& scenario) {
   nlohmann::json items = nlohmann::json::array();
   for (const auto& item : catalogue.items()) {
     items.push_back({{"name", item.name},
@@ -38,14 +38,14 @@ nlohmann::json scene_json(const sim::ItemCatalogue& catalogue, const runner::Sce
                      {"polygon", polygon(item.polygon)},
                      {"colour", {item.colour[0], item.colour[1], item.colour[2]}}});
   }
-  const bool robot = scenario.condition == runner::Condition::ChildRobot;
+  const bool robot = scenario.condition == scenario::Condition::ChildRobot;
   return {{"type", "scene"},
           {"screen", {{"width_m", sim::kScreenWidthM}, {"height_m", sim::kScreenHeightM},
                       {"width_px", sim::kScreenWidthPx}, {"height_px", sim::kScreenHeightPx},
                       {"stash_min_x", sim::kStashMinX}, {"frame", "sandtray"}}},
           {"items", items},
           {"scenario", scenario.name},
-          {"condition", std::string(runner::to_string(scenario.condition))},
+          {"condition", std::string(scenario::to_string(scenario.condition))},
           {"seats", robot ? nlohmann::json{"purple"} : nlohmann::json{"purple", "yellow"}},
           {"robot", robot},
           {"protocol", {{"greeting_s", scenario.protocol.greeting_s}, {"tutorial_s", scenario.protocol.tutorial_s},

@@ -52,7 +52,7 @@ nlohmann::json events_json(const std::vector<Event>& events) {
 // What the server thread, the observer (sim thread) and the API share.
 class Session {
  public:
-  Session(const runner::Scenario& scenario, const WebSessionOptions& options)
+  Session(const scenario::Scenario& scenario, const WebSessionOptions& options)
       : log_(options.out / "events.jsonl"),
         experiment_(options.out / "experiment.yaml", scenario.condition,
                     std::chrono::duration_cast<std::chrono::seconds>(std::chrono::system_clock::now().time_since_epoch()).count(),
@@ -65,7 +65,7 @@ class Session {
       cv::imencode(".png", sim::item_picture(item, kItemPicturePx), png);
       item_pictures_["/api/item/" + item.name + ".png"] = std::string(png.begin(), png.end());
     }
-    if (scenario.condition == runner::Condition::ChildRobot) {
+    if (scenario.condition == scenario::Condition::ChildRobot) {
       robot_ = std::make_unique<WizardSource>(scenario, log_, options.mode, options.sparc_timeout_s);
     }
     // The session's bag (`<out>/recording/`), paused until the page starts it unless told to record.
@@ -284,7 +284,7 @@ class CameraSink final : public runner::FrameSink {
 /// camera's optical frame, while a Foxglove client is connected (the server's per-client queue cap applies).
 class FoxgloveCameras final : public runner::FrameSink {
  public:
-  FoxgloveCameras(WebServer& server, const runner::Scenario& scenario) : server_(server), quality_(scenario.recording.jpeg_quality) {
+  FoxgloveCameras(WebServer& server, const scenario::Scenario& scenario) : server_(server), quality_(scenario.recording.jpeg_quality) {
     for (std::size_t i = 0; i < scenario.cameras.size(); ++i) {
       channels_[scenario.cameras[i].name] = {kFoxgloveFirstCamera + static_cast<int>(i),
                                              recording::camera_topics(scenario.cameras[i].name).rgb_frame};
@@ -420,7 +420,7 @@ class WebObserver final : public runner::EpisodeObserver {
   int screenshots_ = 0;
   std::vector<std::future<void>> pending_writes_;  // screenshots being written (their futures wait when destroyed)
   CameraSink camera_sink_;
-  runner::Scenario camera_scenario_;
+  scenario::Scenario camera_scenario_;
   std::unique_ptr<runner::CameraRig> rig_;
   std::unique_ptr<FoxgloveTopics> foxglove_topics_;  // made at the first tick
   std::string camera_name_;
@@ -431,7 +431,7 @@ class WebObserver final : public runner::EpisodeObserver {
 
 }  // namespace
 
-WebSessionReport serve_web(const runner::Scenario& scenario, std::uint64_t seed, const WebSessionOptions& options,
+WebSessionReport serve_web(const scenario::Scenario& scenario, std::uint64_t seed, const WebSessionOptions& options,
                            const std::atomic<bool>& stop) {
   // The server binds first, so a bad address or a port in use leaves no session folder behind; it is declared after
   // the session and the live episode (whose camera switch the API turns) so that it stops (joining its thread)
@@ -442,7 +442,7 @@ WebSessionReport serve_web(const runner::Scenario& scenario, std::uint64_t seed,
   auto server_options = options.server;
   std::vector<std::string> cameras;
   for (const auto& c : scenario.cameras) cameras.push_back(c.name);
-  server_options.foxglove = foxglove_channels(cameras, scenario.condition == runner::Condition::ChildRobot);
+  server_options.foxglove = foxglove_channels(cameras, scenario.condition == scenario::Condition::ChildRobot);
   WebServer server(
       server_options,
       [&ready](const HttpRequest& r) {

@@ -52,7 +52,7 @@ Vec2 item_position(const policies::Observation& o, const std::string& name) {
 
 }  // namespace
 
-WizardSource::WizardSource(const runner::Scenario& scenario, SessionLog& log, RobotMode mode, double sparc_timeout_s)
+WizardSource::WizardSource(const scenario::Scenario& scenario, SessionLog& log, RobotMode mode, double sparc_timeout_s)
     : log_(log), mode_(mode), sparc_timeout_s_(sparc_timeout_s),
       policy_(policies::make_policy(scenario.robot.policy, scenario.robot.params)) {}
 

@@ -1,7 +1,7 @@
 #pragma once
 // Who plays (`condition:` in scenarios, `condition` in run records), with its one name/value pair and its PInSoRo
 // spelling: header-only, so that a scenario parser reads it without linking the agents. The runner's scenarios use
-// this enum as `runner::Condition`.
+// this enum as `scenario::Condition`.
 
 #include <cstdint>
 #include <string_view>

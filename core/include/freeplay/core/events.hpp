@@ -3,6 +3,7 @@
 // the fields of its `data` object. An Event carries one of them (EventPayload); its JSON is written from the struct,
 // byte for byte what the string-typed events wrote (README, `events/<episode>.jsonl`).
 
+#include <cstddef>
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -165,6 +166,65 @@ struct Cancel {
   static constexpr std::string_view kType = "cancel";  ///< its event-log type
 };
 
+/// The robot's move ends: how, and what the move executor measured (docs/planning.md); the optional measures are
+/// present when there is something to measure.
+struct MoveResult {
+  static constexpr std::string_view kType = "move_result";  ///< its event-log type
+  std::string item;                         ///< the item
+  std::string status;                       ///< how it ended (planning::move_status_name)
+  std::string reason;                       ///< why it failed ("" when it did not)
+  bool target_in_reach = false;             ///< the target lies in the arm's reach
+  std::size_t poses = 0;                    ///< finger poses sent
+  std::optional<double> path_length_m;      ///< the plan's length (when a plan was found)
+  std::optional<double> min_clearance_mm;   ///< the plan's smallest clearance (when a plan was found)
+  std::optional<double> sync_error_mm_mean;  ///< mean finger-to-pose distance (when the arm followed poses)
+  std::optional<double> sync_error_mm_max;   ///< largest finger-to-pose distance (same)
+  std::optional<double> sync_lag_ms;         ///< lag of the arm behind the poses (same)
+  std::optional<double> duration_s;          ///< time from the first to the last pose (when poses were sent)
+  bool stolen_by_child = false;             ///< a child took the item during the move
+};
+
+// --- a controller scenario (source "controller") ---
+
+/// A target of a controller scenario starts.
+struct TargetStart {
+  static constexpr std::string_view kType = "target_start";  ///< its event-log type
+  std::size_t index = 0;  ///< its place in the sequence
+  std::string kind;       ///< "point", "look", "move", "posture" or "wait"
+};
+
+/// A target of a controller scenario ends, with what was measured; which measures are present depends on its kind
+/// (docs/controller.md).
+struct TargetEnd {
+  static constexpr std::string_view kType = "target_end";  ///< its event-log type
+  std::size_t index = 0;                       ///< its place in the sequence
+  std::string kind;                            ///< "point", "look", "move", "posture" or "wait"
+  double t_start = 0.0;                        ///< when it started (s)
+  double t_end = 0.0;                          ///< when it ended (s)
+  std::optional<std::vector<double>> point;    ///< point: the screen point (m)
+  std::optional<bool> reachable;               ///< point: the arm's IK reached it
+  std::optional<double> ik_error_mm;           ///< point: the IK's fingertip error
+  std::optional<std::vector<double>> look;     ///< look: the gaze point (m)
+  std::optional<bool> clamped;                 ///< look: the head's limits clamped the gaze
+  std::optional<double> gaze_error_deg;        ///< look: angle between the gaze and the point
+  std::optional<std::string> posture;          ///< posture: its NAOqi name
+  std::optional<double> joint_error_rad;       ///< posture: the joints' error to it
+  std::optional<double> wait_s;                ///< wait: how long
+  std::optional<std::string> item;             ///< move: the item
+  std::optional<std::vector<double>> to;       ///< move: the target (m)
+  std::optional<std::string> status;           ///< move: how the move ended
+  std::optional<std::string> reason;           ///< move: why it failed
+  std::optional<std::size_t> poses;            ///< move: finger poses sent
+  std::optional<double> error_mm;              ///< point, move: the fingertip's error once settled
+  std::optional<double> sync_error_mm_mean;    ///< move: mean finger-to-pose distance
+  std::optional<double> sync_error_mm_max;     ///< move: largest finger-to-pose distance
+  std::optional<double> sync_lag_ms;           ///< move: lag of the arm behind the poses
+  std::optional<std::size_t> unreachable_poses;  ///< move: poses the arm could not reach
+  std::optional<double> placement_error_mm;    ///< move: the item's distance to the target once released (NaN: not)
+  std::optional<bool> settled;                 ///< point, look, posture, move: the robot settled in time
+  std::optional<double> settle_s;              ///< when it settled (NaN: it did not)
+};
+
 // --- the protocol (source "protocol") ---
 
 /// A protocol stage starts.
@@ -187,7 +247,7 @@ struct FreeplayEnded {
   double duration_s = 0.0;  ///< how long free play lasted
 };
 
-/// Any other event (a move's result, the controller's targets, the web page's, one read from a file): its type and
+/// Any other event (the web page's, one read from a file that no struct writes back byte for byte): its type and
 /// data as they are.
 struct Other {
   std::string type;     ///< its event-log type
@@ -198,8 +258,8 @@ struct Other {
 using EventPayload =
     std::variant<ItemGrabbed, ItemReleased, StrokeStarted, StrokeFinished, InteractionEvent, BackgroundDrawing,
                  BackgroundPublished, StateChanged, GameSignal, Palette, TouchMissed, TouchDown, TouchUp, ChildSpeech,
-                 ChildGaze, WantsToStop, Say, MoveGoal, LookAt, PointAt, Cancel, Stage, SignalReceived, FreeplayEnded,
-                 Other>;
+                 ChildGaze, WantsToStop, Say, MoveGoal, LookAt, PointAt, Cancel, MoveResult, TargetStart, TargetEnd,
+                 Stage, SignalReceived, FreeplayEnded, Other>;
 
 /// The event-log type of `payload`.
 std::string_view type_of(const EventPayload& payload);

@@ -11,7 +11,7 @@
 #include "freeplay/runner/episode.hpp"
 #include "freeplay/runner/episode_observer.hpp"
 #include "freeplay/runner/frame_sink.hpp"
-#include "freeplay/runner/scenario.hpp"
+#include "freeplay/scenario/scenario.hpp"
 
 namespace freeplay::recording {
 
@@ -51,7 +51,7 @@ struct RecordingStats {
 class BagRecorder final : public runner::EpisodeObserver, public runner::FrameSink {
  public:
   /// A recorder writing `sessions_root/<episode id>/` with `settings`.
-  explicit BagRecorder(std::filesystem::path sessions_root, runner::RecordSettings settings = {});
+  explicit BagRecorder(std::filesystem::path sessions_root, scenario::RecordSettings settings = {});
   /// Closes an open bag as `abort` does.
   ~BagRecorder() override;
   BagRecorder(const BagRecorder&) = delete;

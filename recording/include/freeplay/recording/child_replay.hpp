@@ -11,7 +11,7 @@
 #include "freeplay/agents/perception.hpp"
 #include "freeplay/runner/child_action_source.hpp"
 #include "freeplay/runner/episode.hpp"
-#include "freeplay/runner/scenario.hpp"
+#include "freeplay/scenario/scenario.hpp"
 
 namespace freeplay::recording {
 
@@ -47,13 +47,13 @@ class ReplayedChildren final : public runner::ChildActionSource {
 
 /// The scenario of a replay: the recorded one with `policy` (empty: the recorded one; a different policy drops the
 /// recorded policy parameters), free play capped at the recorded length, no cameras and no recording.
-runner::Scenario replay_scenario(const RecordedChildren& recording, const std::string& policy,
-                                 const runner::ScenarioVocabulary& vocabulary = {});
+scenario::Scenario replay_scenario(const RecordedChildren& recording, const std::string& policy,
+                                 const scenario::ScenarioVocabulary& vocabulary = {});
 
 /// Runs the replay episode (the recorded seed, so the robot's random streams are the recorded ones); the record's
 /// `label_share` metrics and the children's `quit_time_s` are removed (replayed children have no annotations) and
 /// `replayed_from` names the bag.
-runner::EpisodeResult replay_children(const RecordedChildren& recording, const runner::Scenario& scenario,
+runner::EpisodeResult replay_children(const RecordedChildren& recording, const scenario::Scenario& scenario,
                                       const runner::SharedModels& models);
 
 }  // namespace freeplay::recording

@@ -28,7 +28,7 @@ struct ServeOptions {
 class GraphSide {
  public:
   /// Starts the ROS client (std::runtime_error when no master answers) and the nodes of `scenario`.
-  GraphSide(const runner::Scenario& scenario, std::uint64_t seed, const ServeOptions& options);
+  GraphSide(const scenario::Scenario& scenario, std::uint64_t seed, const ServeOptions& options);
   ~GraphSide();
   GraphSide(const GraphSide&) = delete;
   GraphSide& operator=(const GraphSide&) = delete;
@@ -50,7 +50,7 @@ class GraphSide {
 /// Runs one live episode of `scenario` from root seed `seed` (runner::LiveEpisode, paced at `options.rate`); throws
 /// std::runtime_error when no master answers; returns early (aborted) once `stop` is set. `timing` receives how late
 /// its ticks finished (topics, cameras and all).
-runner::EpisodeResult serve(const runner::Scenario& scenario, std::uint64_t seed, const ServeOptions& options,
+runner::EpisodeResult serve(const scenario::Scenario& scenario, std::uint64_t seed, const ServeOptions& options,
                             const std::atomic<bool>& stop, runner::PacingTiming* timing = nullptr);
 
 }  // namespace freeplay::ros_live

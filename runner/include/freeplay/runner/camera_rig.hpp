@@ -11,7 +11,7 @@
 
 #include "freeplay/runner/episode_observer.hpp"
 #include "freeplay/runner/frame_sink.hpp"
-#include "freeplay/runner/scenario.hpp"
+#include "freeplay/scenario/scenario.hpp"
 #include "freeplay/stage/avatar_controller.hpp"
 #include "freeplay/stage/nao_controller.hpp"
 #include "freeplay/stage/renderer.hpp"
@@ -20,7 +20,7 @@
 namespace freeplay::runner {
 
 /// The renderer settings of a scenario's `rendering:` section ($MUJOCO_GL, else OSMesa, when no backend is named).
-stage::RendererOptions renderer_options(const RenderingSettings& rendering);
+stage::RendererOptions renderer_options(const scenario::RenderingSettings& rendering);
 
 /// The stage model a snapshot's episode needs: its scene, and the children's mean age (one size fits both avatars).
 stage::StageConfig stage_config_for(const EpisodeSnapshot& snapshot);
@@ -73,7 +73,7 @@ class StageMirror {
 class CameraRig final : public EpisodeObserver {
  public:
   /// A rig for `scenario.cameras` rendering with `options` into `sinks` (which must outlive the episode).
-  CameraRig(const Scenario& scenario, stage::RendererOptions options, std::vector<FrameSink*> sinks);
+  CameraRig(const scenario::Scenario& scenario, stage::RendererOptions options, std::vector<FrameSink*> sinks);
   ~CameraRig() override;
   CameraRig(const CameraRig&) = delete;
   CameraRig& operator=(const CameraRig&) = delete;
@@ -93,7 +93,7 @@ class CameraRig final : public EpisodeObserver {
  private:
   void start(const EpisodeSnapshot& snapshot);
 
-  std::vector<CameraStream> cameras_;
+  std::vector<scenario::CameraStream> cameras_;
   stage::RendererOptions options_;
   std::vector<FrameSink*> sinks_;
   std::unique_ptr<StageMirror> mirror_;

@@ -13,7 +13,7 @@
 
 #include "freeplay/core/event_log.hpp"
 #include "freeplay/runner/episode.hpp"
-#include "freeplay/runner/scenario.hpp"
+#include "freeplay/scenario/scenario.hpp"
 #include "freeplay/runner/suite_runner.hpp"
 
 namespace freeplay::runner {
@@ -52,7 +52,7 @@ std::string trace_machine_kind();
 
 /// Runs a scenario of kind `controller` with root seed `seed` (random target sets draw from it); throws
 /// InputError for a scenario of another kind.
-ControllerEpisodeResult run_controller_episode(const Scenario& scenario, std::uint64_t seed,
+ControllerEpisodeResult run_controller_episode(const scenario::Scenario& scenario, std::uint64_t seed,
                                                const SharedModels& models, const std::atomic<bool>& stop);
 
 /// The suite runner's episode for a controller task: record, `events/<id>.jsonl` and `traces/<id>.jsonl`.

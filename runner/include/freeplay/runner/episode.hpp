@@ -21,7 +21,7 @@
 #include "freeplay/runner/episode_observer.hpp"
 #include "freeplay/runner/robot_action_source.hpp"
 #include "freeplay/runner/robot_body.hpp"
-#include "freeplay/runner/scenario.hpp"
+#include "freeplay/scenario/scenario.hpp"
 #include "freeplay/runner/signal_source.hpp"
 #include "freeplay/runner/suite_runner.hpp"
 #include "freeplay/sim/item_catalogue.hpp"
@@ -58,7 +58,7 @@ inline const std::atomic<bool> kNeverStop{false};
 /// What one episode runs: the scenario, its root seed and the models, and the parts a front replaces (children's
 /// actions, what decides for the robot, the robot's finger, signals from outside). Deterministic from these alone.
 struct EpisodeInputs {
-  const Scenario& scenario;                              ///< what it runs (validated)
+  const scenario::Scenario& scenario;                              ///< what it runs (validated)
   std::uint64_t seed = 0;                                ///< root seed
   const SharedModels& models = SharedModels::shipped();  ///< the catalogue, child model and robot body
   const std::atomic<bool>& stop = kNeverStop;            ///< the episode returns `aborted` once this becomes true
@@ -108,7 +108,7 @@ EpisodeOutputs observed_by(const EpisodeObservers& observers);
 EpisodeResult run_episode(const EpisodeInputs& inputs, const EpisodeOutputs& outputs = {});
 
 /// Makes the observers an episode of a scenario needs (cameras, recorder) for the run folder `run_dir`.
-using ObserverFactory = std::function<EpisodeObservers(const Scenario& scenario, const std::filesystem::path& run_dir)>;
+using ObserverFactory = std::function<EpisodeObservers(const scenario::Scenario& scenario, const std::filesystem::path& run_dir)>;
 
 /// The suite runner's episode function: writes `events/<id>.jsonl` and `annotations/<id>.yaml`; with an
 /// observer factory, attaches its observers to each episode (they write under `run_dir`).

@@ -26,7 +26,7 @@ struct CaptureResult {
 /// Runs episode `seed` of `scenario` up to the first 10 Hz tick at or after `moment`, calls `capture` with that
 /// tick's snapshot, and stops the episode. Throws InputError naming `--time`/`--stage` when the moment lies beyond
 /// the stage (e.g. "the episode ended at 742.3 s of free play (children quit)"), and whatever `capture` throws.
-CaptureResult capture_episode_moment(const Scenario& scenario, std::uint64_t seed, const SharedModels& models,
+CaptureResult capture_episode_moment(const scenario::Scenario& scenario, std::uint64_t seed, const SharedModels& models,
                                      const EpisodeMoment& moment,
                                      const std::function<void(const EpisodeSnapshot&)>& capture);
 

@@ -20,9 +20,12 @@ namespace freeplay::sim {
 class Sandtray;
 }
 
+namespace freeplay::scenario {
+struct Scenario;
+}
+
 namespace freeplay::runner {
 
-struct Scenario;
 struct EpisodeResult;
 
 /// Simulation only: a synthetic child's internal state, which no camera, coder or policy sees (freeplay.Env hands
@@ -78,7 +81,7 @@ struct EpisodeSnapshot {
 
 /// Identity of the episode an observer is attached to.
 struct EpisodeInfo {
-  const Scenario* scenario = nullptr;  ///< the scenario it runs
+  const scenario::Scenario* scenario = nullptr;  ///< the scenario it runs
   std::string id;                      ///< file id (`<variant>-<index>`)
   std::uint64_t seed = 0;              ///< the episode's root seed
   int episode_index = 0;               ///< index within its variant (the robot policy's PolicyContext gets it)

@@ -6,10 +6,10 @@
 // only the MoveSink differs (where the poses go and who hears of the move).
 
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 
+#include "freeplay/core/events.hpp"
 #include "freeplay/core/rng.hpp"
 #include "freeplay/planning/move_executor.hpp"
 #include "freeplay/policies/play_policy.hpp"
@@ -33,8 +33,8 @@ class MoveSink {
   virtual void finger(const planning::TimedPose& pose, double t) = 0;
   /// The running move's progress (the action's feedback, percent of its poses sent).
   virtual void progress(int percentage) { (void)percentage; }
-  /// A move ended with `status`; `fields` holds its event fields (status, reason, measurements).
-  virtual void move_ended(const policies::MoveItem& move, planning::MoveStatus status, nlohmann::json fields,
+  /// A move ended with `status`; `result` is its event (status, reason, measurements).
+  virtual void move_ended(const policies::MoveItem& move, planning::MoveStatus status, events::MoveResult result,
                           double t) = 0;
 };
 
@@ -71,9 +71,9 @@ class MoveDriver {
   bool end_unreported_ = false;  // the move ended in start(), reported at the next step
 };
 
-/// The event fields of a move's end: status, reason, whether the target was in reach, the poses sent and the
-/// measurements (path, clearance, synchronisation, duration), so that a recording holds every metric.
-nlohmann::json move_end_fields(const planning::MoveOutcome& outcome, const std::string& item);
+/// The event of a move's end: status, reason, whether the target was in reach, the poses sent and the measurements
+/// (path, clearance, synchronisation, duration), so that a recording holds every metric.
+events::MoveResult move_result_event(const planning::MoveOutcome& outcome, const std::string& item);
 
 /// What the policy hears of a move that ended with `outcome`.
 policies::ActionResult move_action_result(const planning::MoveOutcome& outcome, const std::string& item);

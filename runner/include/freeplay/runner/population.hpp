@@ -7,13 +7,13 @@
 
 #include "freeplay/agents/session.hpp"
 #include "freeplay/runner/episode.hpp"
-#include "freeplay/runner/scenario.hpp"
+#include "freeplay/scenario/scenario.hpp"
 
 namespace freeplay::runner {
 
 /// Runs episodes 0…`episodes`−1 of `scenario` (episode i with the suite's seed for index i, so two scenarios with
 /// the same seed meet the same children) on `threads` threads; `progress` (may be empty) hears each finished one.
-std::vector<agents::SessionResult> run_population(const Scenario& scenario, int episodes, int threads,
+std::vector<agents::SessionResult> run_population(const scenario::Scenario& scenario, int episodes, int threads,
                                                   const SharedModels& models,
                                                   const std::function<void(int done)>& progress = {});
 

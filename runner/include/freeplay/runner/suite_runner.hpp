@@ -12,7 +12,7 @@
 #include <string_view>
 #include <vector>
 
-#include "freeplay/runner/suite.hpp"
+#include "freeplay/scenario/suite.hpp"
 #include "freeplay/results/run_folder.hpp"
 
 namespace freeplay::runner {
@@ -26,7 +26,7 @@ struct EpisodeOutput {
 
 /// One episode to run.
 struct EpisodeTask {
-  const SuiteVariant* variant = nullptr;  ///< which variant
+  const scenario::SuiteVariant* variant = nullptr;  ///< which variant
   int index = 0;                          ///< episode index within the variant
   std::uint64_t seed = 0;                 ///< the episode's root seed
   bool events = true;                     ///< the run keeps event logs (the episode may skip writing them)
@@ -75,14 +75,14 @@ bool in_shard(const std::string& variant_id, int index, int shard_index, int sha
 
 /// Builds each child-robot variant's policy once and asks it whether it can play the variant's episodes (bad
 /// policy parameters, a yoked policy's missing source episodes): InputError before any episode starts.
-void check_policies(const Suite& suite);
+void check_policies(const scenario::Suite& suite);
 
 /// Runs every unfinished episode of `suite` in this shard (after `check_policies`); writes episodes.jsonl, per-episode files,
 /// summary.csv and summary.md (also when interrupted, for the finished episodes).
-RunReport run_suite(const Suite& suite, const RunOptions& options, const EpisodeFunction& run_episode,
+RunReport run_suite(const scenario::Suite& suite, const RunOptions& options, const EpisodeFunction& run_episode,
                     std::atomic<bool>& stop);
 
 /// The episodes a run of `suite` must hold (with configuration hashes); `title` defaults to the suite name.
-results::ExpectedRun expected_run(const Suite& suite, const std::string& title = {});
+results::ExpectedRun expected_run(const scenario::Suite& suite, const std::string& title = {});
 
 }  // namespace freeplay::runner

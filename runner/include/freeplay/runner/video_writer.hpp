@@ -10,7 +10,7 @@
 
 #include "freeplay/runner/episode_observer.hpp"
 #include "freeplay/runner/frame_sink.hpp"
-#include "freeplay/runner/scenario.hpp"
+#include "freeplay/scenario/scenario.hpp"
 
 namespace freeplay::runner {
 
@@ -22,7 +22,7 @@ std::filesystem::path video_relative_path(const std::string& episode_id, const s
 class VideoFileSink final : public FrameSink, public EpisodeObserver {
  public:
   /// Videos of the `video: true` cameras of `scenario`, under `run_dir`.
-  VideoFileSink(const Scenario& scenario, std::filesystem::path run_dir);
+  VideoFileSink(const scenario::Scenario& scenario, std::filesystem::path run_dir);
   ~VideoFileSink() override;
   VideoFileSink(const VideoFileSink&) = delete;
   VideoFileSink& operator=(const VideoFileSink&) = delete;

@@ -1,7 +1,9 @@
 #pragma once
-// Numbers that describe the NAO H25 V5 outside the MJCF: joint order, postures, head anti-collision limits.
+// Numbers that describe the NAO H25 V5 outside the MJCF: joint order, postures, head anti-collision limits. The
+// names are header-only, so that the scenario parser lists the postures without linking the stage.
 
 #include <array>
+#include <cstddef>
 #include <string_view>
 #include <vector>
 
@@ -33,10 +35,16 @@ inline constexpr std::array<NaoPosture, 6> kAllNaoPostures = {NaoPosture::StandI
                                                               NaoPosture::StandZero, NaoPosture::Crouch,
                                                               NaoPosture::Sit,       NaoPosture::SitRelax};
 
+/// The NAOqi names of the postures, in `kAllNaoPostures` order (header-only: the scenario parser lists them).
+inline constexpr std::array<std::string_view, 6> kNaoPostureNames = {"StandInit", "Stand", "StandZero",
+                                                                     "Crouch",    "Sit",   "SitRelax"};
+
 /// The joint angles of a posture.
 const NaoJointVector& posture_angles(NaoPosture posture);
 /// The NAOqi name of a posture (e.g. "StandInit").
-std::string_view posture_name(NaoPosture posture);
+constexpr std::string_view posture_name(NaoPosture posture) {
+  return kNaoPostureNames.at(static_cast<std::size_t>(posture));
+}
 /// Parses a NAOqi posture name; throws InputError listing the allowed names.
 NaoPosture posture_from_name(std::string_view name);
 

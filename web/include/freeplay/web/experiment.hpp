@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "freeplay/recording/session_files.hpp"
-#include "freeplay/runner/scenario.hpp"
+#include "freeplay/scenario/scenario.hpp"
 #include "freeplay/web/commands.hpp"
 #include "freeplay/web/session_log.hpp"
 
@@ -20,7 +20,7 @@ class ExperimentManager {
  public:
   /// Writes to `path` (nothing is written until the first change); `condition` is the scenario's;
   /// `created_unix_s` names the participants as the supervisor did.
-  ExperimentManager(std::filesystem::path path, runner::Condition condition, std::int64_t created_unix_s,
+  ExperimentManager(std::filesystem::path path, scenario::Condition condition, std::int64_t created_unix_s,
                     SessionLog& log);
 
   /// Applies a validated experiment command at free-play time `freeplay_t` (s; negative before free play) and

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "freeplay/runner/episode_observer.hpp"
-#include "freeplay/runner/scenario.hpp"
+#include "freeplay/scenario/scenario.hpp"
 
 namespace freeplay::sim {
 class Sandtray;
@@ -17,7 +17,7 @@ namespace freeplay::web {
 
 /// The static scene: screen size (m and px), each item's footprint polygon (item frame), label and colour, the
 /// scenario's condition, seats, protocol durations and free-play cap.
-nlohmann::json scene_json(const sim::ItemCatalogue& catalogue, const runner::Scenario& scenario);
+nlohmann::json scene_json(const sim::ItemCatalogue& catalogue, const scenario::Scenario& scenario);
 
 /// The ground truth of one tick: clock, stage, items, touches, children, robot body (without the wizard's state,
 /// the zones and the events, which the session adds).

@@ -48,7 +48,7 @@ struct WebSessionReport {
 /// Runs one live episode of `scenario` from root seed `seed` (runner::LiveEpisode, paced at `options.rate`) served on
 /// the web; returns once it ended and (with `linger`) the session was finalised, or early (aborted) when `stop` is
 /// set during the episode.
-WebSessionReport serve_web(const runner::Scenario& scenario, std::uint64_t seed, const WebSessionOptions& options,
+WebSessionReport serve_web(const scenario::Scenario& scenario, std::uint64_t seed, const WebSessionOptions& options,
                            const std::atomic<bool>& stop);
 
 }  // namespace freeplay::web

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "freeplay/policies/play_policy.hpp"
-#include "freeplay/runner/scenario.hpp"
+#include "freeplay/scenario/scenario.hpp"
 #include "freeplay/web/commands.hpp"
 #include "freeplay/web/robot_mode.hpp"
 #include "freeplay/web/session_log.hpp"
@@ -26,7 +26,7 @@ namespace freeplay::web {
 class WizardSource final : public policies::PlayPolicy {
  public:
   /// The scenario's policy in `mode`; proposals wait `sparc_timeout_s` (simulated seconds); logs to `log`.
-  WizardSource(const runner::Scenario& scenario, SessionLog& log, RobotMode mode, double sparc_timeout_s);
+  WizardSource(const scenario::Scenario& scenario, SessionLog& log, RobotMode mode, double sparc_timeout_s);
   ~WizardSource() override;
 
   /// Queues a validated robot command (any thread).

@@ -1,4 +1,4 @@
-#include "freeplay/runner/suite.hpp"
+#include "freeplay/scenario/suite.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -6,7 +6,7 @@
 #include <limits>
 #include <set>
 
-namespace freeplay::runner {
+namespace freeplay::scenario {
 
 namespace {
 
@@ -147,4 +147,4 @@ Suite single_scenario_suite(const std::filesystem::path& path, const std::vector
   return suite;
 }
 
-}  // namespace freeplay::runner
+}  // namespace freeplay::scenario

@@ -18,7 +18,7 @@
 #include "freeplay/stage/camera_names.hpp"
 #include "freeplay/stage/stage_mode.hpp"
 
-namespace freeplay::runner {
+namespace freeplay::scenario {
 
 /// Names the validator accepts for the open-ended choices (filled from the registries of the linked libraries).
 struct ScenarioVocabulary {
@@ -148,4 +148,4 @@ struct RecordSettings {
   }
 };
 
-}  // namespace freeplay::runner
+}  // namespace freeplay::scenario

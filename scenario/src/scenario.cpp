@@ -1,4 +1,4 @@
-#include "freeplay/runner/scenario.hpp"
+#include "freeplay/scenario/scenario.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -11,7 +11,7 @@
 #include "freeplay/stage/camera_names.hpp"
 #include "freeplay/stage/nao_description.hpp"
 
-namespace freeplay::runner {
+namespace freeplay::scenario {
 
 namespace {
 
@@ -39,8 +39,7 @@ std::shared_ptr<const Schema> controller_target_schema(const ScenarioVocabulary&
       with_default("region", S::enumeration({"reach", "screen"}), "reach",
                    "reach: the band the standing Nao reaches; screen: the whole screen"),
   });
-  std::vector<std::string> postures;
-  for (const auto p : stage::kAllNaoPostures) postures.emplace_back(stage::posture_name(p));
+  const std::vector<std::string> postures(stage::kNaoPostureNames.begin(), stage::kNaoPostureNames.end());
   // One map with every key optional (exactly one present, checked in check_kind_sections), so that errors inside a
   // target name the nested key and its allowed values.
   return S::map({optional("point", xy, "screen point (sandtray x, y, m)"),
@@ -269,4 +268,4 @@ Scenario load_scenario(const std::filesystem::path& path, const std::vector<std:
   return scenario_from_document(load_yaml_file(path), overrides, vocabulary);
 }
 
-}  // namespace freeplay::runner
+}  // namespace freeplay::scenario

@@ -5,11 +5,11 @@
 
 #include "freeplay/core/atomic_file.hpp"
 #include "freeplay/core/error.hpp"
-#include "freeplay/runner/suite.hpp"
+#include "freeplay/scenario/suite.hpp"
 #include "../scratch_dir.hpp"
 
 using namespace freeplay;
-using namespace freeplay::runner;
+using namespace freeplay::scenario;
 
 namespace {
 

@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "freeplay/runner/scenario.hpp"
+#include "freeplay/scenario/scenario.hpp"
 
-namespace freeplay::runner {
+namespace freeplay::scenario {
 
 /// One expanded scenario of a suite (a sweep produces several variants of one entry).
 struct SuiteVariant {
@@ -42,4 +42,4 @@ Suite single_scenario_suite(const std::filesystem::path& path, const std::vector
 /// True when the YAML file at `path` is a suite (has a top-level `suite:` key) rather than a scenario.
 bool is_suite_file(const std::filesystem::path& path);
 
-}  // namespace freeplay::runner
+}  // namespace freeplay::scenario

@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "freeplay/agents/condition.hpp"
-#include "freeplay/runner/settings.hpp"
+#include "freeplay/scenario/settings.hpp"
 
-namespace freeplay::runner {
+namespace freeplay::scenario {
 
 /// One step of a controller scenario's target sequence.
 struct ControllerTarget {
@@ -114,4 +114,4 @@ Scenario load_scenario(const std::filesystem::path& path, const std::vector<std:
 Scenario scenario_from_document(YamlDocument document, const std::vector<std::string>& overrides = {},
                                 const ScenarioVocabulary& vocabulary = {});
 
-}  // namespace freeplay::runner
+}  // namespace freeplay::scenario

@@ -1,9 +1,9 @@
 #include <gtest/gtest.h>
 
-#include "freeplay/runner/scenario.hpp"
+#include "freeplay/scenario/scenario.hpp"
 
 using namespace freeplay;
-using namespace freeplay::runner;
+using namespace freeplay::scenario;
 
 namespace {
 
