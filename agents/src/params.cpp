@@ -16,7 +16,7 @@ namespace {
 
 constexpr std::array<std::string_view, kFeatureCount> kFeatureNames = {
     "motivation",      "age",           "sociability",       "assertiveness", "tablet",      "partner_active",
-    "partner_joint",   "partner_attention", "grievance",   "task_noplay",   "together"};
+    "partner_joint",   "partner_attention", "partner_robot", "grievance",     "task_noplay", "together"};
 
 /// Reads validated values from one YAML document, naming file:line:column and the key path on errors.
 class Reader {
@@ -87,143 +87,6 @@ void read_fields(const Reader& r, const YAML::Node& section, const std::string& 
   for (const auto& f : fields) *f.value = r.number(r.child(section, path, f.name), path + "." + f.name, f.lo, f.hi);
 }
 
-/// The scalar fields of the `drives` section with their allowed ranges.
-std::vector<Field> drive_fields(DriveParams& d) {
-  return {{"initial_motivation_mean", &d.initial_motivation_mean, 0, 1},
-          {"initial_motivation_sd", &d.initial_motivation_sd, 0, 1},
-          {"decay_per_min", &d.decay_per_min, 0, 100},
-          {"attention_effect", &d.attention_effect, -10, 10},
-          {"play_gain_per_min", &d.play_gain_per_min, 0, 100},
-          {"contingency_gain", &d.contingency_gain, 0, 1},
-          {"unanswered_bid_drop", &d.unanswered_bid_drop, 0, 1},
-          {"unfairness_drop", &d.unfairness_drop, 0, 1},
-          {"novelty_gain_per_min", &d.novelty_gain_per_min, 0, 100},
-          {"novelty_tau_min", &d.novelty_tau_min, 0.01, 1000},
-          {"boredom_rate_per_min", &d.boredom_rate_per_min, 0, 100},
-          {"quit_hazard_per_min", &d.quit_hazard_per_min, 0, 100},
-          {"quit_boredom_slope", &d.quit_boredom_slope, 0, 100},
-          {"quit_motivation_slope", &d.quit_motivation_slope, -100, 100},
-          {"partner_quit_factor", &d.partner_quit_factor, 1, 1e6},
-          {"grievance_tau_s", &d.grievance_tau_s, 0.1, 3600},
-          {"attention_tau_s", &d.attention_tau_s, 0.1, 3600}};
-}
-
-/// The scalar fields of the `reactions` section.
-std::vector<Field> reaction_fields(ReactionParams& re) {
-  return {{"take_reaction_probability", &re.take_reaction_probability, 0, 1},
-          {"unanswered_frustration_probability", &re.unanswered_frustration_probability, 0, 1},
-          {"frustrated_weight", &re.frustrated_weight, 0, 1e3},
-          {"adversarial_weight", &re.adversarial_weight, 0, 1e3},
-          {"assertive_weight", &re.assertive_weight, 0, 1e3},
-          {"retaliation_probability", &re.retaliation_probability, 0, 1},
-          {"imitation_probability", &re.imitation_probability, 0, 1},
-          {"ownership_memory_s", &re.ownership_memory_s, 0, 3600},
-          {"look_weight", &re.look_weight, 0, 10},
-          {"talk_weight", &re.talk_weight, 0, 10},
-          {"act_weight", &re.act_weight, 0, 10}};
-}
-
-/// The scalar fields of the `motor` section.
-std::vector<Field> motor_fields(MotorParams& m) {
-  return {{"fitts_a_s", &m.fitts_a_s, 0, 10},
-          {"fitts_b_s_per_bit", &m.fitts_b_s_per_bit, 0, 10},
-          {"age_slowdown_per_year", &m.age_slowdown_per_year, 0, 1},
-          {"endpoint_sd_m", &m.endpoint_sd_m, 0, 0.1},
-          {"tap_min_s", &m.tap_min_s, 0.01, 5},
-          {"tap_max_s", &m.tap_max_s, 0.01, 5},
-          {"reach_depth_m", &m.reach_depth_m, 0.05, 1},
-          {"reach_per_year_m", &m.reach_per_year_m, 0, 0.1},
-          {"action_gap_sigma", &m.action_gap_sigma, 0, 3},
-          {"stroke_duration_s", &m.stroke_duration_s, 0.1, 60}};
-}
-
-/// The scalar fields of the `expression` section.
-std::vector<Field> expression_fields(ExpressionParams& e) {
-  return {{"glance_median_s", &e.glance_median_s, 0.05, 60},
-          {"glance_sigma", &e.glance_sigma, 0, 3},
-          {"adult_speech_per_min", &e.adult_speech_per_min, 0, 60},
-          {"robot_curiosity_per_min", &e.robot_curiosity_per_min, 0, 60},
-          {"robot_novelty_face_share", &e.robot_novelty_face_share, 0, 1},
-          {"noplay_watch_share", &e.noplay_watch_share, 0, 1},
-          {"noplay_speech_share", &e.noplay_speech_share, 0, 1},
-          {"syllables_mean", &e.syllables_mean, 1, 50},
-          {"articulation_rate_at_3", &e.articulation_rate_at_3, 0.5, 10},
-          {"articulation_rate_per_year", &e.articulation_rate_per_year, 0, 1}};
-}
-
-/// The scalar fields of the `traits` section.
-std::vector<Field> trait_fields(TraitParams& t) {
-  return {{"sociability_mean", &t.sociability_mean, 0, 1},
-          {"sociability_sd", &t.sociability_sd, 0, 1},
-          {"assertiveness_mean", &t.assertiveness_mean, 0, 1},
-          {"assertiveness_sd", &t.assertiveness_sd, 0, 1},
-          {"attention_mean", &t.attention_mean, 0, 1},
-          {"attention_sd", &t.attention_sd, 0, 1},
-          {"attention_per_year", &t.attention_per_year, -0.5, 0.5}};
-}
-
-/// The scalar fields of the `partnership` section.
-std::vector<Field> partnership_fields(PartnershipParams& pa) {
-  return {{"answer_age_logit", &pa.answer_age_logit, -20, 20},
-          {"answer_sociability_logit", &pa.answer_sociability_logit, -20, 20},
-          {"answer_delay_median_s", &pa.answer_delay_median_s, 0.05, 60},
-          {"join_probability", &pa.join_probability, 0, 1},
-          {"reciprocity_window_s", &pa.reciprocity_window_s, 0.5, 600},
-          {"window_per_year", &pa.window_per_year, -0.5, 0.5},
-          {"expectation_exponent", &pa.expectation_exponent, 0, 20},
-          {"bid_floor", &pa.bid_floor, 0, 1},
-          {"watch_window_s", &pa.watch_window_s, 0.5, 600}};
-}
-
-/// The scalar fields of the `contingency` section.
-std::vector<Field> contingency_fields(ContingencyParams& c) {
-  return {{"response_window_s", &c.response_window_s, 0.1, 60},
-          {"about_distance_m", &c.about_distance_m, 0, 1},
-          {"memory_s", &c.memory_s, 1, 3600},
-          {"prior_bids", &c.prior_bids, 0, 1000},
-          {"prior_answered_share", &c.prior_answered_share, 0, 1},
-          {"prior_free_time_s", &c.prior_free_time_s, 0, 3600},
-          {"prior_base_rate_per_min", &c.prior_base_rate_per_min, 0, 600},
-          {"prior_link_probability", &c.prior_link_probability, 0.001, 0.999},
-          {"non_contingent_weight", &c.non_contingent_weight, 0, 10},
-          {"habituation_rate", &c.habituation_rate, 0, 1},
-          {"habituation_recovery_s", &c.habituation_recovery_s, 0, 36000},
-          {"interruption_tau_s", &c.interruption_tau_s, 0.1, 3600},
-          {"interruption_threshold", &c.interruption_threshold, 0, 1000},
-          {"interruption_drop", &c.interruption_drop, 0, 1}};
-}
-
-/// The scalar fields of the `coder` section.
-std::vector<Field> coder_fields(CoderParams& co) {
-  return {{"answer_window_s", &co.answer_window_s, 0.1, 600},
-          {"follow_window_s", &co.follow_window_s, 0.1, 600},
-          {"joint_distance_m", &co.joint_distance_m, 0, 1},
-          {"talk_play_window_s", &co.talk_play_window_s, 0.1, 600},
-          {"interaction_window_s", &co.interaction_window_s, 0.1, 600},
-          {"cooperation_window_s", &co.cooperation_window_s, 0.1, 600},
-          {"cooperation_hold_s", &co.cooperation_hold_s, 0, 600},
-          {"discussion_hold_s", &co.discussion_hold_s, 0, 600},
-          {"active_window_s", &co.active_window_s, 0.1, 600},
-          {"watch_share", &co.watch_share, 0, 1},
-          {"watch_window_s", &co.watch_window_s, 0.1, 600},
-          {"min_bout_s", &co.min_bout_s, 0, 600},
-          {"task_min_bout_s", &co.task_min_bout_s, 0, 600},
-          {"stroke_min_s", &co.stroke_min_s, 0, 60},
-          {"evidence_hold_s", &co.evidence_hold_s, 0.1, 600},
-          {"judgement_window_s", &co.judgement_window_s, 0.1, 600},
-          {"play_share", &co.play_share, 0, 1},
-          {"friendly_share", &co.friendly_share, 0, 1},
-          {"interaction_hold_s", &co.interaction_hold_s, 0.1, 600},
-          {"adult_hold_s", &co.adult_hold_s, 0.1, 600},
-          {"attitude_min_bout_s", &co.attitude_min_bout_s, 0, 600},
-          {"salient_min_bout_s", &co.salient_min_bout_s, 0, 600},
-          {"anchoring", &co.anchoring, 0, 2},
-          {"take_window_s", &co.take_window_s, 0.1, 600},
-          {"adversarial_hold_s", &co.adversarial_hold_s, 0.1, 600},
-          {"frustrated_hold_s", &co.frustrated_hold_s, 0.1, 600},
-          {"assertive_hold_s", &co.assertive_hold_s, 0.1, 600}};
-}
-
 std::vector<std::string> label_list(Axis axis) {
   std::vector<std::string> out;
   for (std::size_t i = 0; i < label_count(axis); ++i) out.emplace_back(label_name(axis, i));
@@ -284,7 +147,7 @@ void read_axis(const Reader& r, const YAML::Node& node, const std::string& path,
 ChildModelParams parse_document(const YAML::Node& root, const Reader& r) {
   ChildModelParams p;
   r.check_keys(root, "", {"version", "session_cap_s", "axes", "drives", "reactions", "motor", "expression", "traits",
-                          "partnership", "contingency", "coder"});
+                          "partnership", "coder"});
   const double version = r.number(r.child(root, "", "version"), "version", 1, 1);
   (void)version;
   p.session_cap_s = r.number(r.child(root, "", "session_cap_s"), "session_cap_s", 1.0, 86400.0);
@@ -296,12 +159,56 @@ ChildModelParams parse_document(const YAML::Node& root, const Reader& r) {
     read_axis(r, r.child(axes, "axes", name), "axes." + name, axis, p.axis(axis));
   }
 
-  read_fields(r, r.child(root, "", "drives"), "drives", drive_fields(p.drives));
-  read_fields(r, r.child(root, "", "reactions"), "reactions", reaction_fields(p.reactions));
+  DriveParams& d = p.drives;
+  read_fields(r, r.child(root, "", "drives"), "drives",
+              {{"initial_motivation_mean", &d.initial_motivation_mean, 0, 1},
+               {"initial_motivation_sd", &d.initial_motivation_sd, 0, 1},
+               {"decay_per_min", &d.decay_per_min, 0, 100},
+               {"attention_effect", &d.attention_effect, -10, 10},
+               {"play_gain_per_min", &d.play_gain_per_min, 0, 100},
+               {"contingency_gain", &d.contingency_gain, 0, 1},
+               {"unanswered_bid_drop", &d.unanswered_bid_drop, 0, 1},
+               {"bid_response_window_s", &d.bid_response_window_s, 0.1, 600},
+               {"unfairness_drop", &d.unfairness_drop, 0, 1},
+               {"novelty_gain_per_min", &d.novelty_gain_per_min, 0, 100},
+               {"novelty_tau_min", &d.novelty_tau_min, 0.01, 1000},
+               {"boredom_rate_per_min", &d.boredom_rate_per_min, 0, 100},
+               {"quit_hazard_per_min", &d.quit_hazard_per_min, 0, 100},
+               {"quit_boredom_slope", &d.quit_boredom_slope, 0, 100},
+               {"quit_motivation_slope", &d.quit_motivation_slope, -100, 100},
+               {"partner_quit_factor", &d.partner_quit_factor, 1, 1e6},
+               {"grievance_tau_s", &d.grievance_tau_s, 0.1, 3600},
+               {"attention_tau_s", &d.attention_tau_s, 0.1, 3600}});
+
+  ReactionParams& re = p.reactions;
+  read_fields(r, r.child(root, "", "reactions"), "reactions",
+              {{"take_reaction_probability", &re.take_reaction_probability, 0, 1},
+               {"frustrated_weight", &re.frustrated_weight, 0, 1e3},
+               {"adversarial_weight", &re.adversarial_weight, 0, 1e3},
+               {"assertive_weight", &re.assertive_weight, 0, 1e3},
+               {"retaliation_probability", &re.retaliation_probability, 0, 1},
+               {"imitation_probability", &re.imitation_probability, 0, 1},
+               {"ownership_memory_s", &re.ownership_memory_s, 0, 3600},
+               {"react_distance_m", &re.react_distance_m, 0, 1},
+               {"react_window_s", &re.react_window_s, 0, 600},
+               {"look_weight", &re.look_weight, 0, 10},
+               {"talk_weight", &re.talk_weight, 0, 10},
+               {"act_weight", &re.act_weight, 0, 10}});
 
   MotorParams& m = p.motor;
   const YAML::Node motor = r.child(root, "", "motor");
-  read_fields(r, motor, "motor", motor_fields(m), {"action_gap_median_s"});
+  read_fields(r, motor, "motor",
+              {{"fitts_a_s", &m.fitts_a_s, 0, 10},
+               {"fitts_b_s_per_bit", &m.fitts_b_s_per_bit, 0, 10},
+               {"age_slowdown_per_year", &m.age_slowdown_per_year, 0, 1},
+               {"endpoint_sd_m", &m.endpoint_sd_m, 0, 0.1},
+               {"tap_min_s", &m.tap_min_s, 0.01, 5},
+               {"tap_max_s", &m.tap_max_s, 0.01, 5},
+               {"reach_depth_m", &m.reach_depth_m, 0.05, 1},
+               {"reach_per_year_m", &m.reach_per_year_m, 0, 0.1},
+               {"action_gap_sigma", &m.action_gap_sigma, 0, 3},
+               {"stroke_duration_s", &m.stroke_duration_s, 0.1, 60}},
+              {"action_gap_median_s"});
   std::array<double, kMaxLabels> gaps{};
   read_label_map(r, r.child(motor, "motor", "action_gap_median_s"), "motor.action_gap_median_s",
                  Axis::TaskEngagement, gaps, 0.0, 3600.0, true);
@@ -310,7 +217,14 @@ ChildModelParams parse_document(const YAML::Node& root, const Reader& r) {
 
   ExpressionParams& e = p.expression;
   const YAML::Node expression = r.child(root, "", "expression");
-  read_fields(r, expression, "expression", expression_fields(e),
+  read_fields(r, expression, "expression",
+              {{"glance_median_s", &e.glance_median_s, 0.05, 60},
+               {"glance_sigma", &e.glance_sigma, 0, 3},
+               {"adult_speech_per_min", &e.adult_speech_per_min, 0, 60},
+               {"robot_curiosity_per_min", &e.robot_curiosity_per_min, 0, 60},
+               {"syllables_mean", &e.syllables_mean, 1, 50},
+               {"articulation_rate_at_3", &e.articulation_rate_at_3, 0.5, 10},
+               {"articulation_rate_per_year", &e.articulation_rate_per_year, 0, 1}},
               {"partner_face_share", "speech_per_min", "proposal_share"});
   read_label_map(r, r.child(expression, "expression", "partner_face_share"), "expression.partner_face_share",
                  Axis::SocialEngagement, e.partner_face_share, 0.0, 1.0, true);
@@ -319,16 +233,57 @@ ChildModelParams parse_document(const YAML::Node& root, const Reader& r) {
   read_label_map(r, r.child(expression, "expression", "proposal_share"), "expression.proposal_share",
                  Axis::SocialAttitude, e.proposal_share, 0.0, 1.0, true);
 
-  read_fields(r, r.child(root, "", "traits"), "traits", trait_fields(p.traits));
+  TraitParams& t = p.traits;
+  read_fields(r, r.child(root, "", "traits"), "traits",
+              {{"sociability_mean", &t.sociability_mean, 0, 1},
+               {"sociability_sd", &t.sociability_sd, 0, 1},
+               {"assertiveness_mean", &t.assertiveness_mean, 0, 1},
+               {"assertiveness_sd", &t.assertiveness_sd, 0, 1},
+               {"attention_mean", &t.attention_mean, 0, 1},
+               {"attention_sd", &t.attention_sd, 0, 1},
+               {"attention_per_year", &t.attention_per_year, -0.5, 0.5}});
 
   PartnershipParams& pa = p.partnership;
   const YAML::Node partnership = r.child(root, "", "partnership");
-  read_fields(r, partnership, "partnership", partnership_fields(pa), {"answer_probability"});
+  read_fields(r, partnership, "partnership",
+              {{"answer_age_logit", &pa.answer_age_logit, -20, 20},
+               {"answer_sociability_logit", &pa.answer_sociability_logit, -20, 20},
+               {"answer_delay_median_s", &pa.answer_delay_median_s, 0.05, 60},
+               {"join_probability", &pa.join_probability, 0, 1},
+               {"reciprocity_window_s", &pa.reciprocity_window_s, 0.5, 600},
+               {"window_per_year", &pa.window_per_year, -0.5, 0.5},
+               {"expectation_prior", &pa.expectation_prior, 0, 1},
+               {"expectation_rate", &pa.expectation_rate, 0, 1},
+               {"expectation_exponent", &pa.expectation_exponent, 0, 20},
+               {"bid_floor", &pa.bid_floor, 0, 1},
+               {"watch_window_s", &pa.watch_window_s, 0.5, 600}},
+              {"answer_probability"});
   read_label_map(r, r.child(partnership, "partnership", "answer_probability"), "partnership.answer_probability",
                  Axis::SocialEngagement, pa.answer_probability, 0.0, 1.0, true);
 
-  read_fields(r, r.child(root, "", "contingency"), "contingency", contingency_fields(p.contingency));
-  read_fields(r, r.child(root, "", "coder"), "coder", coder_fields(p.coder));
+  CoderParams& co = p.coder;
+  read_fields(r, r.child(root, "", "coder"), "coder",
+              {{"answer_window_s", &co.answer_window_s, 0.1, 600},
+               {"exchange_hold_s", &co.exchange_hold_s, 0.1, 600},
+               {"joint_act_hold_s", &co.joint_act_hold_s, 0.1, 600},
+               {"active_window_s", &co.active_window_s, 0.1, 600},
+               {"watch_share", &co.watch_share, 0, 1},
+               {"watch_window_s", &co.watch_window_s, 0.1, 600},
+               {"min_bout_s", &co.min_bout_s, 0, 600},
+               {"joint_distance_m", &co.joint_distance_m, 0, 1},
+               {"task_min_bout_s", &co.task_min_bout_s, 0, 600},
+               {"evidence_hold_s", &co.evidence_hold_s, 0.1, 600},
+               {"judgement_window_s", &co.judgement_window_s, 0.1, 600},
+               {"play_share", &co.play_share, 0, 1},
+               {"friendly_share", &co.friendly_share, 0, 1},
+               {"interaction_hold_s", &co.interaction_hold_s, 0.1, 600},
+               {"adult_hold_s", &co.adult_hold_s, 0.1, 600},
+               {"attitude_min_bout_s", &co.attitude_min_bout_s, 0, 600},
+               {"salient_min_bout_s", &co.salient_min_bout_s, 0, 600},
+               {"take_window_s", &co.take_window_s, 0.1, 600},
+               {"adversarial_hold_s", &co.adversarial_hold_s, 0.1, 600},
+               {"frustrated_hold_s", &co.frustrated_hold_s, 0.1, 600},
+               {"assertive_hold_s", &co.assertive_hold_s, 0.1, 600}});
   return p;
 }
 
@@ -401,24 +356,68 @@ std::string child_model_params_to_yaml(const ChildModelParams& p, std::string_vi
   }
   out << YAML::EndMap;
 
-  ChildModelParams copy = p;  // the field lists point into mutable sections
-  const auto section = [&out](const char* name, const std::vector<Field>& fields) {
+  const auto section = [&out](const char* name, const std::vector<std::pair<const char*, double>>& fields) {
     out << YAML::Key << name << YAML::Value << YAML::BeginMap;
-    for (const Field& f : fields) out << YAML::Key << f.name << YAML::Value << num(*f.value);
+    for (const auto& [key, value] : fields) out << YAML::Key << key << YAML::Value << num(value);
   };
-  section("drives", drive_fields(copy.drives));
+  const DriveParams& d = p.drives;
+  section("drives", {{"initial_motivation_mean", d.initial_motivation_mean},
+                     {"initial_motivation_sd", d.initial_motivation_sd},
+                     {"decay_per_min", d.decay_per_min},
+                     {"attention_effect", d.attention_effect},
+                     {"play_gain_per_min", d.play_gain_per_min},
+                     {"contingency_gain", d.contingency_gain},
+                     {"unanswered_bid_drop", d.unanswered_bid_drop},
+                     {"bid_response_window_s", d.bid_response_window_s},
+                     {"unfairness_drop", d.unfairness_drop},
+                     {"novelty_gain_per_min", d.novelty_gain_per_min},
+                     {"novelty_tau_min", d.novelty_tau_min},
+                     {"boredom_rate_per_min", d.boredom_rate_per_min},
+                     {"quit_hazard_per_min", d.quit_hazard_per_min},
+                     {"quit_boredom_slope", d.quit_boredom_slope},
+                     {"quit_motivation_slope", d.quit_motivation_slope},
+                     {"partner_quit_factor", d.partner_quit_factor},
+                     {"grievance_tau_s", d.grievance_tau_s},
+                     {"attention_tau_s", d.attention_tau_s}});
   out << YAML::EndMap;
-  section("reactions", reaction_fields(copy.reactions));
+  const ReactionParams& re = p.reactions;
+  section("reactions", {{"take_reaction_probability", re.take_reaction_probability},
+                        {"frustrated_weight", re.frustrated_weight},
+                        {"adversarial_weight", re.adversarial_weight},
+                        {"assertive_weight", re.assertive_weight},
+                        {"retaliation_probability", re.retaliation_probability},
+                        {"imitation_probability", re.imitation_probability},
+                        {"ownership_memory_s", re.ownership_memory_s},
+                        {"react_distance_m", re.react_distance_m},
+                        {"react_window_s", re.react_window_s},
+                        {"look_weight", re.look_weight},
+                        {"talk_weight", re.talk_weight},
+                        {"act_weight", re.act_weight}});
   out << YAML::EndMap;
   const MotorParams& m = p.motor;
-  section("motor", motor_fields(copy.motor));
+  section("motor", {{"fitts_a_s", m.fitts_a_s},
+                    {"fitts_b_s_per_bit", m.fitts_b_s_per_bit},
+                    {"age_slowdown_per_year", m.age_slowdown_per_year},
+                    {"endpoint_sd_m", m.endpoint_sd_m},
+                    {"tap_min_s", m.tap_min_s},
+                    {"tap_max_s", m.tap_max_s},
+                    {"reach_depth_m", m.reach_depth_m},
+                    {"reach_per_year_m", m.reach_per_year_m},
+                    {"action_gap_sigma", m.action_gap_sigma},
+                    {"stroke_duration_s", m.stroke_duration_s}});
   std::array<double, kMaxLabels> gaps{};
   for (std::size_t i = 0; i < 4; ++i) gaps[i] = m.action_gap_median_s[i];
   out << YAML::Key << "action_gap_median_s" << YAML::Value;
   emit_label_map(out, Axis::TaskEngagement, gaps);
   out << YAML::EndMap;
   const ExpressionParams& e = p.expression;
-  section("expression", expression_fields(copy.expression));
+  section("expression", {{"glance_median_s", e.glance_median_s},
+                         {"glance_sigma", e.glance_sigma},
+                         {"adult_speech_per_min", e.adult_speech_per_min},
+                         {"robot_curiosity_per_min", e.robot_curiosity_per_min},
+                         {"syllables_mean", e.syllables_mean},
+                         {"articulation_rate_at_3", e.articulation_rate_at_3},
+                         {"articulation_rate_per_year", e.articulation_rate_per_year}});
   out << YAML::Key << "partner_face_share" << YAML::Value;
   emit_label_map(out, Axis::SocialEngagement, e.partner_face_share);
   out << YAML::Key << "speech_per_min" << YAML::Value;
@@ -426,15 +425,52 @@ std::string child_model_params_to_yaml(const ChildModelParams& p, std::string_vi
   out << YAML::Key << "proposal_share" << YAML::Value;
   emit_label_map(out, Axis::SocialAttitude, e.proposal_share);
   out << YAML::EndMap;
-  section("traits", trait_fields(copy.traits));
+  const TraitParams& t = p.traits;
+  section("traits", {{"sociability_mean", t.sociability_mean},
+                     {"sociability_sd", t.sociability_sd},
+                     {"assertiveness_mean", t.assertiveness_mean},
+                     {"assertiveness_sd", t.assertiveness_sd},
+                     {"attention_mean", t.attention_mean},
+                     {"attention_sd", t.attention_sd},
+                     {"attention_per_year", t.attention_per_year}});
   out << YAML::EndMap;
-  section("partnership", partnership_fields(copy.partnership));
+  const PartnershipParams& pa = p.partnership;
+  section("partnership", {{"answer_age_logit", pa.answer_age_logit},
+                          {"answer_sociability_logit", pa.answer_sociability_logit},
+                          {"answer_delay_median_s", pa.answer_delay_median_s},
+                          {"join_probability", pa.join_probability},
+                          {"reciprocity_window_s", pa.reciprocity_window_s},
+                          {"window_per_year", pa.window_per_year},
+                          {"expectation_prior", pa.expectation_prior},
+                          {"expectation_rate", pa.expectation_rate},
+                          {"expectation_exponent", pa.expectation_exponent},
+                          {"bid_floor", pa.bid_floor},
+                          {"watch_window_s", pa.watch_window_s}});
   out << YAML::Key << "answer_probability" << YAML::Value;
-  emit_label_map(out, Axis::SocialEngagement, p.partnership.answer_probability);
+  emit_label_map(out, Axis::SocialEngagement, pa.answer_probability);
   out << YAML::EndMap;
-  section("contingency", contingency_fields(copy.contingency));
-  out << YAML::EndMap;
-  section("coder", coder_fields(copy.coder));
+  const CoderParams& co = p.coder;
+  section("coder", {{"answer_window_s", co.answer_window_s},
+                    {"exchange_hold_s", co.exchange_hold_s},
+                    {"joint_act_hold_s", co.joint_act_hold_s},
+                    {"active_window_s", co.active_window_s},
+                    {"watch_share", co.watch_share},
+                    {"watch_window_s", co.watch_window_s},
+                    {"min_bout_s", co.min_bout_s},
+                    {"joint_distance_m", co.joint_distance_m},
+                    {"task_min_bout_s", co.task_min_bout_s},
+                    {"evidence_hold_s", co.evidence_hold_s},
+                    {"judgement_window_s", co.judgement_window_s},
+                    {"play_share", co.play_share},
+                    {"friendly_share", co.friendly_share},
+                    {"interaction_hold_s", co.interaction_hold_s},
+                    {"adult_hold_s", co.adult_hold_s},
+                    {"attitude_min_bout_s", co.attitude_min_bout_s},
+                    {"salient_min_bout_s", co.salient_min_bout_s},
+                    {"take_window_s", co.take_window_s},
+                    {"adversarial_hold_s", co.adversarial_hold_s},
+                    {"frustrated_hold_s", co.frustrated_hold_s},
+                    {"assertive_hold_s", co.assertive_hold_s}});
   out << YAML::EndMap;
   out << YAML::EndMap;
   std::string text;
