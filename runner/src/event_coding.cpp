@@ -105,7 +105,8 @@ agents::SessionAnnotations code_event_log(const std::vector<Event>& events, cons
       players[1].gaze.item = item;
       return;
     }
-    if (e.get<events::MoveResult>() != nullptr && e.source == "robot") {
+    // By type, not by payload: a move's result in an older log (without today's fields) is read as events::Other.
+    if (e.source == "robot" && e.type() == events::MoveResult::kType) {
       players[1].fingers.erase(0);
       players[1].gaze = agents::GazeTarget{};
       players[1].gaze.kind = agents::GazeKind::Tray;
