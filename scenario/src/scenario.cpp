@@ -139,7 +139,7 @@ ControllerSpec controller_from(const YAML::Node& node) {
 
 std::shared_ptr<const Schema> build_scenario_schema(const ScenarioVocabulary& vocabulary) {
   auto record_map = std::vector<Field>{with_default("bag", S::boolean(), "true", "write the ROS bag")};
-  for (auto& f : SchemaArchive::fields_of<RecordSettings>(vocabulary)) record_map.push_back(std::move(f));
+  for (auto& f : SchemaArchive::fields_of<RecordSettings>(vocabulary.voices)) record_map.push_back(std::move(f));
   return S::map({
       required("name", S::string(), "short identifier"),
       with_default("description", S::string(), "\"\""),
@@ -155,7 +155,7 @@ std::shared_ptr<const Schema> build_scenario_schema(const ScenarioVocabulary& vo
       with_default("planner", settings_schema<PlannerSettings>(vocabulary.planners), "{}"),
       with_default("perception", settings_schema<PerceptionSettings>(), "{}"),
       with_default("protocol", settings_schema<Protocol>(), "{}"),
-      with_default("cameras", S::list(settings_schema<CameraStream>(vocabulary)), "[]"),
+      with_default("cameras", S::list(settings_schema<CameraStream>(vocabulary.cameras)), "[]"),
       with_default("rendering", settings_schema<RenderingSettings>(), "{}", "how the cameras are rendered"),
       with_default("record",
                    S::one_of({S::boolean(), S::map(std::move(record_map))},
@@ -248,11 +248,11 @@ Scenario scenario_from_document(YamlDocument document, const std::vector<std::st
   s.planner = read_settings<PlannerSettings>(root["planner"], vocabulary.planners);
   s.perception = read_settings<PerceptionSettings>(root["perception"]);
   s.protocol = read_settings<Protocol>(root["protocol"]);
-  for (const auto& c : root["cameras"]) s.cameras.push_back(read_settings<CameraStream>(c, vocabulary));
+  for (const auto& c : root["cameras"]) s.cameras.push_back(read_settings<CameraStream>(c, vocabulary.cameras));
   s.rendering = read_settings<RenderingSettings>(root["rendering"]);
   if (const auto& r = root["record"]; r.IsMap()) {
     s.record = r["bag"].as<bool>();
-    s.recording = read_settings<RecordSettings>(r, vocabulary);
+    s.recording = read_settings<RecordSettings>(r, vocabulary.voices);
   } else {
     s.record = r.as<bool>();
   }
