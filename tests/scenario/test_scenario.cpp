@@ -227,7 +227,8 @@ TEST(Scenario, MovedBlocksNameTheKeyAndTheAllowedValues) {
     const std::string msg = error_of("name: cc\ncondition: child-child\n" + text);
     EXPECT_NE(msg.find(wanted), std::string::npos) << msg;
   };
-  expect_error("rendering: {preset: ugly}\n", "'rendering.preset': unknown value 'ugly' (allowed: one of fast, pretty)");
+  expect_error("rendering: {preset: ugly}\n",
+               "'rendering.preset': unknown value 'ugly' (allowed: one of fast, pretty)");
   expect_error("rendering: {backend: vulkan}\n",
                "'rendering.backend': unknown value 'vulkan' (allowed: one of osmesa, egl)");
   expect_error("rendering: {msaa: 4}\n", "allowed: backend, preset");
@@ -236,7 +237,8 @@ TEST(Scenario, MovedBlocksNameTheKeyAndTheAllowedValues) {
   expect_error("cameras: [{name: kinect}]\n", "'cameras[0].name': unknown value 'kinect' (allowed: one of "
                                               "camera_purple, camera_yellow, env_camera, CameraTop, CameraBottom)");
   expect_error("cameras: [{name: camera_purple, fps: 30}]\n", "allowed: name, rate_hz, width, height, depth, video");
-  expect_error("record: {voice: robotic}\n", "'record.voice': unknown value 'robotic' (allowed: one of babble, espeak)");
+  expect_error("record: {voice: robotic}\n",
+               "'record.voice': unknown value 'robotic' (allowed: one of babble, espeak)");
   expect_error("record: {compression: zip}\n",
                "'record.compression': unknown value 'zip' (allowed: one of none, lz4, bz2)");
   expect_error("record: {jpeg_quality: 0}\n", "'record.jpeg_quality'");

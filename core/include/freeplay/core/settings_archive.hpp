@@ -3,9 +3,9 @@
 // Serialize pattern): a struct declares `template <class Archive> void visit(Archive& a)` calling
 // `a.field(key, member, schema, help)` (or `a.required` / `a.optional`) once per member; its member initialisers are
 // the defaults. `settings_schema<T>()` builds the map schema from that list and `read_settings<T>(node)` fills a
-// struct from a node the schema validated (`read_unvalidated_settings<T>(node, path)` validates it first). An enum member is written with `to_string(value)` and read with
-// `from_string(text, value)`, the one name/value pair its library declares next to it (found by argument-dependent
-// lookup); `enum_names` lists the names its schema allows.
+// struct from a node the schema validated (`read_unvalidated_settings<T>(node, path)` validates it first). An enum
+// member is written with `to_string(value)` and read with `from_string(text, value)`, the one name/value pair its
+// library declares next to it (found by argument-dependent lookup); `enum_names` lists the names its schema allows.
 
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
