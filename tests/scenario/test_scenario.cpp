@@ -7,13 +7,15 @@ using namespace freeplay::scenario;
 
 namespace {
 
-Scenario parse(const std::string& text, const std::vector<std::string>& overrides = {}) {
-  return scenario_from_document(parse_yaml(text, "test.yaml"), overrides);
+Scenario parse(const std::string& text, const std::vector<std::string>& overrides = {},
+               const ScenarioVocabulary& vocabulary = {}) {
+  return scenario_from_document(parse_yaml(text, "test.yaml"), overrides, vocabulary);
 }
 
-std::string error_of(const std::string& text, const std::vector<std::string>& overrides = {}) {
+std::string error_of(const std::string& text, const std::vector<std::string>& overrides = {},
+                     const ScenarioVocabulary& vocabulary = {}) {
   try {
-    parse(text, overrides);
+    parse(text, overrides, vocabulary);
   } catch (const InputError& e) {
     return e.what();
   }
@@ -252,14 +254,6 @@ TEST(Scenario, VoicesComeFromTheRecorder) {
   EXPECT_EQ(vocabulary.voices, std::vector<std::string>(recording::kVoiceNames.begin(), recording::kVoiceNames.end()));
   ScenarioVocabulary babble_only;
   babble_only.voices = {"babble"};
-  const auto msg = [&] {
-    try {
-      scenario_from_document(parse_yaml("name: cc\ncondition: child-child\nrecord: {voice: espeak}\n", "test.yaml"),
-                             {}, babble_only);
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  }();
+  const auto msg = error_of("name: cc\ncondition: child-child\nrecord: {voice: espeak}\n", {}, babble_only);
   EXPECT_NE(msg.find("'record.voice': unknown value 'espeak' (allowed: one of babble)"), std::string::npos) << msg;
 }
