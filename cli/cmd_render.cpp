@@ -19,6 +19,7 @@
 #include "freeplay/sim/item_catalogue.hpp"
 #include "freeplay/sim/sandtray.hpp"
 #include "freeplay/stage/camera_names.hpp"
+#include "freeplay/stage/camera_settings.hpp"
 #include "freeplay/stage/renderer.hpp"
 #include "freeplay/stage/stage.hpp"
 #include "scenario_moment.hpp"
@@ -32,7 +33,7 @@ struct RenderArgs {
   std::string scene = "child-robot";
   std::vector<std::string> cameras;
   bool depth = false;
-  std::string preset = "fast";
+  std::string preset = stage::RenderingSettings{}.preset;  // a scenario's default (`rendering.preset`)
   int width = 0;
   int height = 0;
   double age = 7.0;

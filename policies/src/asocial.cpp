@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "freeplay/core/error.hpp"
-#include "freeplay/core/yaml_schema.hpp"
+#include "freeplay/core/settings_archive.hpp"
 
 namespace freeplay::policies {
 
@@ -33,14 +33,6 @@ const std::map<std::string, std::vector<std::string>>& asocial_habitats() {
 
 namespace {
 
-std::shared_ptr<const Schema> params_schema() {
-  return Schema::map({
-      with_default("pause_min_s", Schema::number(0, 60), "1.2", "pause after a move: lower bound"),
-      with_default("pause_max_s", Schema::number(0, 60), "2.5", "pause after a move: upper bound"),
-      with_default("idle_pause_s", Schema::number(0, 60), "0.3", "pause when nothing was moved"),
-  });
-}
-
 bool reachable(const RobotSelf& self, const Vec2& p) {
   if (!self.arm_reach_known) return true;  // the original plays everywhere until localised
   return (p - self.arm_reach_centre).norm() < self.arm_reach_radius;
@@ -58,15 +50,9 @@ bool outside_box(const std::pair<Vec2, Vec2>& box, const Vec2& p) {
 
 }  // namespace
 
-AsocialPolicy::AsocialPolicy(const YAML::Node& params) {
-  YAML::Node node = params.IsDefined() && !params.IsNull() ? YAML::Clone(params) : YAML::Node(YAML::NodeType::Map);
-  ValidationErrors errors;
-  params_schema()->validate(node, "robot.params", "", errors);
-  errors.throw_if_any();
-  pause_min_s_ = node["pause_min_s"].as<double>();
-  pause_max_s_ = node["pause_max_s"].as<double>();
-  idle_pause_s_ = node["idle_pause_s"].as<double>();
-  if (pause_max_s_ < pause_min_s_) {
+AsocialPolicy::AsocialPolicy(const YAML::Node& params)
+    : params_(read_unvalidated_settings<AsocialParams>(params, "robot.params")) {
+  if (params_.pause_max_s < params_.pause_min_s) {
     throw InputError("pause_max_s is below pause_min_s", "robot.params.pause_max_s", ">= pause_min_s");
   }
 }
@@ -126,7 +112,7 @@ std::vector<Action> AsocialPolicy::decide(const Observation& observation) {
   if (waiting_for_result_) {
     if (!result_arrived_) return {};
     waiting_for_result_ = false;
-    resume_at_ = observation.t + rng_.uniform(pause_min_s_, pause_max_s_);
+    resume_at_ = observation.t + rng_.uniform(params_.pause_min_s, params_.pause_max_s);
     return {};
   }
   if (observation.t < resume_at_) return {};
@@ -135,7 +121,7 @@ std::vector<Action> AsocialPolicy::decide(const Observation& observation) {
     result_arrived_ = false;
     return {*move};
   }
-  resume_at_ = observation.t + idle_pause_s_;
+  resume_at_ = observation.t + params_.idle_pause_s;
   return {};
 }
 

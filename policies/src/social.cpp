@@ -5,7 +5,7 @@
 #include <map>
 
 #include "freeplay/core/error.hpp"
-#include "freeplay/core/yaml_schema.hpp"
+#include "freeplay/core/settings_archive.hpp"
 #include "freeplay/policies/asocial.hpp"
 #include "freeplay/policies/play_policy.hpp"
 
@@ -13,18 +13,30 @@ namespace freeplay::policies {
 
 namespace {
 
-std::shared_ptr<const Schema> social_schema() {
-  return Schema::map({
-      with_default("reaction_delay_s", Schema::number(0, 10), "0.8", "delay before reacting to a child's move"),
-      with_default("praise_probability", Schema::number(0, 1), "0.5", "chance to praise a child's move"),
-      with_default("join_probability", Schema::number(0, 1), "0.6", "chance to join a child's move with a move"),
-      with_default("idle_proposal_s", Schema::number(1, 600), "20", "child idle this long → propose an idea"),
-      with_default("disengaged_s", Schema::number(1, 600), "45", "child idle this long → encourage"),
-      with_default("turn_timeout_s", Schema::number(0, 600), "15", "wait this long for the child's turn"),
-      with_default("join_offset_m", Schema::number(0.02, 0.2), "0.06", "distance from the child's item"),
-      with_default("min_move_m", Schema::number(0.005, 0.2), "0.02", "displacement that counts as a move"),
-  });
-}
+/// The social policy's `robot.params`.
+struct SocialParams {
+  double reaction_delay_s = 0.8;    ///< delay before reacting to a child's move
+  double praise_probability = 0.5;  ///< chance to praise a child's move
+  double join_probability = 0.6;    ///< chance to join a child's move with a move
+  double idle_proposal_s = 20.0;    ///< child idle this long → propose an idea
+  double disengaged_s = 45.0;       ///< child idle this long → encourage
+  double turn_timeout_s = 15.0;     ///< wait this long for the child's turn
+  double join_offset_m = 0.06;      ///< distance from the child's item
+  double min_move_m = 0.02;         ///< displacement that counts as a move
+
+  /// The keys of the social policy's `robot.params`.
+  template <typename Archive>
+  void visit(Archive& a) {
+    a.field("reaction_delay_s", reaction_delay_s, Schema::number(0, 10), "delay before reacting to a child's move");
+    a.field("praise_probability", praise_probability, Schema::number(0, 1), "chance to praise a child's move");
+    a.field("join_probability", join_probability, Schema::number(0, 1), "chance to join a child's move with a move");
+    a.field("idle_proposal_s", idle_proposal_s, Schema::number(1, 600), "child idle this long → propose an idea");
+    a.field("disengaged_s", disengaged_s, Schema::number(1, 600), "child idle this long → encourage");
+    a.field("turn_timeout_s", turn_timeout_s, Schema::number(0, 600), "wait this long for the child's turn");
+    a.field("join_offset_m", join_offset_m, Schema::number(0.02, 0.2), "distance from the child's item");
+    a.field("min_move_m", min_move_m, Schema::number(0.005, 0.2), "displacement that counts as a move");
+  }
+};
 
 /// A child's move as the robot infers it from the touch frames and item TF.
 struct ObservedMove {
@@ -40,21 +52,9 @@ struct ObservedMove {
 /// takes an item a child is holding.
 class SocialPolicy final : public PlayPolicy {
  public:
-  /// Parameters: see `social_schema()` (all optional).
-  explicit SocialPolicy(const YAML::Node& params) {
-    YAML::Node node = params.IsDefined() && !params.IsNull() ? YAML::Clone(params) : YAML::Node(YAML::NodeType::Map);
-    ValidationErrors errors;
-    social_schema()->validate(node, "robot.params", "", errors);
-    errors.throw_if_any();
-    reaction_delay_s_ = node["reaction_delay_s"].as<double>();
-    praise_probability_ = node["praise_probability"].as<double>();
-    join_probability_ = node["join_probability"].as<double>();
-    idle_proposal_s_ = node["idle_proposal_s"].as<double>();
-    disengaged_s_ = node["disengaged_s"].as<double>();
-    turn_timeout_s_ = node["turn_timeout_s"].as<double>();
-    join_offset_m_ = node["join_offset_m"].as<double>();
-    min_move_m_ = node["min_move_m"].as<double>();
-  }
+  /// Parameters: SocialParams (all optional).
+  explicit SocialPolicy(const YAML::Node& params)
+      : params_(read_unvalidated_settings<SocialParams>(params, "robot.params")) {}
 
   std::string name() const override { return "social"; }
   bool perceives_children() const override { return true; }
@@ -84,16 +84,16 @@ class SocialPolicy final : public PlayPolicy {
       react_to(*pending_, o, actions);
       pending_.reset();
     } else if (!moving_ && !pending_) {
-      if (child_idle >= disengaged_s_ && o.t - last_encouragement_ > disengaged_s_) {
+      if (child_idle >= params_.disengaged_s && o.t - last_encouragement_ > params_.disengaged_s) {
         last_encouragement_ = o.t;
         actions.push_back(Say{encouragement(o), child_seat(o)});
         propose_move(o, actions);  // show by example
-      } else if (child_idle >= idle_proposal_s_ && o.t - last_proposal_ > idle_proposal_s_) {
+      } else if (child_idle >= params_.idle_proposal_s && o.t - last_proposal_ > params_.idle_proposal_s) {
         last_proposal_ = o.t;
         actions.push_back(Say{rng_.bernoulli(0.5) ? "Shall we build a zoo? The animals need their homes!"
                                                   : "Let's tell a story: the lion is looking for his friends!",
                               child_seat(o)});
-      } else if (child_moved_since_my_turn_ || o.t - my_turn_done_at_ > turn_timeout_s_) {
+      } else if (child_moved_since_my_turn_ || o.t - my_turn_done_at_ > params_.turn_timeout_s) {
         // Turn-taking: after my move, wait for the child's turn (or a timeout) before moving again.
         if (o.t - my_turn_done_at_ > 4.0 && rng_.bernoulli(0.02)) propose_move(o, actions);
       }
@@ -131,9 +131,9 @@ class SocialPolicy final : public PlayPolicy {
       } else if (!item.touched_by_child && it != grabbed_at_.end()) {
         const Vec2 from = it->second;
         grabbed_at_.erase(it);
-        if ((item.pose.position() - from).norm() >= min_move_m_) {
+        if ((item.pose.position() - from).norm() >= params_.min_move_m) {
           pending_ = ObservedMove{item.name, from, item.pose.position()};
-          react_at_ = o.t + reaction_delay_s_;
+          react_at_ = o.t + params_.reaction_delay_s;
           child_moved_since_my_turn_ = true;
         }
       }
@@ -180,13 +180,13 @@ class SocialPolicy final : public PlayPolicy {
 
   // Joins/imitates/complements the child's move: brings an item with a shared habitat next to the child's item.
   void react_to(const ObservedMove& move, const Observation& o, std::vector<Action>& actions) {
-    if (rng_.bernoulli(praise_probability_)) {
+    if (rng_.bernoulli(params_.praise_probability)) {
       static const char* praises[] = {"Great idea!", "I like where you put the {}!", "Well done!",
                                       "Oh, the {} looks happy there!"};
       const auto* text = praises[rng_.uniform_int(0, 3)];
       actions.push_back(Say{fmt::format(fmt::runtime(text), move.item), child_seat(o)});
     }
-    if (!rng_.bernoulli(join_probability_)) return;
+    if (!rng_.bernoulli(params_.join_probability)) return;
     const auto& habitats = asocial_habitats();
     const auto moved = habitats.find(move.item);
     std::vector<std::string> candidates;
@@ -203,7 +203,7 @@ class SocialPolicy final : public PlayPolicy {
     if (candidates.empty()) return;
     const auto& chosen = candidates[static_cast<std::size_t>(rng_.uniform_int(0, static_cast<std::int64_t>(candidates.size()) - 1))];
     const double angle = rng_.uniform(0.0, 2.0 * 3.141592653589793);
-    Vec2 target = move.to + join_offset_m_ * Vec2(std::cos(angle), std::sin(angle));
+    Vec2 target = move.to + params_.join_offset_m * Vec2(std::cos(angle), std::sin(angle));
     target.x() = std::clamp(target.x(), 0.03, 0.50);
     target.y() = std::clamp(target.y(), -0.305, -0.03);
     if (!reachable(o, target)) return;
@@ -235,14 +235,7 @@ class SocialPolicy final : public PlayPolicy {
     return fmt::format(fmt::runtime(lines[rng_.uniform_int(0, 2)]), item);
   }
 
-  double reaction_delay_s_ = 0.8;
-  double praise_probability_ = 0.5;
-  double join_probability_ = 0.6;
-  double idle_proposal_s_ = 20.0;
-  double disengaged_s_ = 45.0;
-  double turn_timeout_s_ = 15.0;
-  double join_offset_m_ = 0.06;
-  double min_move_m_ = 0.02;
+  SocialParams params_;
   Rng rng_{0};
   std::string seat_ = "yellow";
   std::map<std::string, Vec2> grabbed_at_;

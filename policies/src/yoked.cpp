@@ -11,10 +11,11 @@
 #include <fstream>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "freeplay/core/error.hpp"
-#include "freeplay/core/yaml_schema.hpp"
+#include "freeplay/core/settings_archive.hpp"
 #include "freeplay/policies/play_policy.hpp"
 #include "freeplay/policies/yoked.hpp"
 
@@ -29,15 +30,22 @@ constexpr const char* kEpisodesFile = "episodes.jsonl";
 constexpr const char* kEventLogHint =
     "a run folder with plain event logs: run the source with `--events all` (a gz log: `gunzip -k events/*.gz`)";
 
-std::shared_ptr<const Schema> yoked_schema() {
-  return Schema::map({
-      required("from", Schema::string(), "run folder of the source run (relative to the working folder)"),
-      optional("variant", Schema::string(), "variant of the source run (required when it holds several)"),
-      with_default("episode_offset", Schema::integer(0, 1000000), "1",
-                   "episode k replays source episode (k + offset) mod N: another child's session (0: the same "
-                   "child's, which reproduces the source exactly)"),
-  });
-}
+/// The yoked policy's `robot.params`.
+struct YokedParams {
+  std::string from;                    ///< run folder of the source run
+  std::optional<std::string> variant;  ///< variant of the source run (needed when it holds several)
+  int episode_offset = 1;              ///< episode k replays source episode (k + offset) mod N
+
+  /// The keys of the yoked policy's `robot.params`.
+  template <typename Archive>
+  void visit(Archive& a) {
+    a.required("from", from, Schema::string(), "run folder of the source run (relative to the working folder)");
+    a.optional("variant", variant, Schema::string(), "variant of the source run (required when it holds several)");
+    a.field("episode_offset", episode_offset, Schema::integer(0, 1000000),
+            "episode k replays source episode (k + offset) mod N: another child's session (0: the same "
+            "child's, which reproduces the source exactly)");
+  }
+};
 
 /// The episodes of a source run folder: per variant, each episode's file id (`<variant>-<index>`) by index.
 struct SourceRun {
@@ -149,14 +157,9 @@ std::vector<std::pair<double, Action>> read_robot_actions(const std::filesystem:
 /// `yoked`: replays the robot actions of episode k of another run against the child of episode k.
 class YokedPolicy final : public PlayPolicy {
  public:
-  /// Parameters: `from: RUN_DIR`, `variant: NAME` when that run holds several, `episode_offset` (default 1).
-  explicit YokedPolicy(const YAML::Node& params) {
-    YAML::Node node = params.IsDefined() && !params.IsNull() ? YAML::Clone(params) : YAML::Node(YAML::NodeType::Map);
-    ValidationErrors errors;
-    yoked_schema()->validate(node, "robot.params", "", errors);
-    errors.throw_if_any();
-    from_ = node["from"].as<std::string>();
-    offset_ = node["episode_offset"] ? node["episode_offset"].as<int>() : 1;
+  /// Parameters: YokedParams (`from: RUN_DIR`, `variant: NAME` when that run holds several, `episode_offset`).
+  explicit YokedPolicy(const YAML::Node& params)
+      : params_(read_unvalidated_settings<YokedParams>(params, "robot.params")), from_(params_.from) {
     if (!fs::is_regular_file(from_ / kEpisodesFile)) {
       throw InputError(fmt::format("'{}' is not a run folder (it has no {})", from_.string(), kEpisodesFile),
                        "robot.params.from", "the folder of a finished `freeplay run` of a child-robot scenario");
@@ -166,8 +169,8 @@ class YokedPolicy final : public PlayPolicy {
       throw InputError(fmt::format("the run folder '{}' holds no finished episode", from_.string()),
                        "robot.params.from", "a run with finished episodes");
     }
-    if (node["variant"]) {
-      variant_ = node["variant"].as<std::string>();
+    if (params_.variant) {
+      variant_ = *params_.variant;
       if (!source_->episode_ids.contains(variant_)) {
         throw InputError(fmt::format("the run folder '{}' has no variant '{}'", from_.string(), variant_),
                          "robot.params.variant", source_->variant_list());
@@ -215,7 +218,7 @@ class YokedPolicy final : public PlayPolicy {
   /// The source episode replayed in episode `index`: (index + offset) mod the source's episode count.
   int source_episode(int index) const {
     const auto available = static_cast<long>(source_->episode_ids.at(variant_).size());
-    return static_cast<int>((static_cast<long>(index) + offset_) % available);
+    return static_cast<int>((static_cast<long>(index) + params_.episode_offset) % available);
   }
 
   /// The event log of source episode `index`; InputError naming what is missing.
@@ -238,9 +241,9 @@ class YokedPolicy final : public PlayPolicy {
                      "robot.params.from", kEventLogHint);
   }
 
-  fs::path from_;
+  YokedParams params_;
+  fs::path from_;  // params_.from
   std::string variant_;
-  int offset_ = 1;
   std::shared_ptr<const SourceRun> source_;
   std::vector<std::pair<double, Action>> actions_;  // free-play time → action, in log order
   std::size_t next_ = 0;

@@ -10,6 +10,7 @@
 
 #include "freeplay/core/error.hpp"
 #include "freeplay/core/rng.hpp"
+#include "freeplay/recording/record_settings.hpp"
 #ifdef FREEPLAY_WITH_ESPEAK
 #include "freeplay/voice_espeak/espeak.hpp"
 #endif
@@ -89,9 +90,9 @@ class EspeakVoice final : public Voice {
 
 std::vector<std::string> voice_names() {
 #ifdef FREEPLAY_WITH_ESPEAK
-  return {"babble", "espeak"};
+  return {kVoiceNames.begin(), kVoiceNames.end()};
 #else
-  return {"babble"};
+  return {std::string(kVoiceNames.front())};  // babble only
 #endif
 }
 

@@ -64,7 +64,7 @@ struct EncodedImages {
   std::vector<std::uint8_t> depth;  ///< compressedDepth payload
 };
 
-EncodedImages encode_images(const cv::Mat& rgb, const cv::Mat& depth_m, const scenario::RecordSettings& settings) {
+EncodedImages encode_images(const cv::Mat& rgb, const cv::Mat& depth_m, const RecordSettings& settings) {
   EncodedImages out;
   if (!rgb.empty()) out.jpeg = encode_jpeg(rgb, settings.jpeg_quality);
   if (!depth_m.empty()) out.depth = encode_compressed_depth(depth_m, settings.png_level);
@@ -75,7 +75,7 @@ EncodedImages encode_images(const cv::Mat& rgb, const cv::Mat& depth_m, const sc
 
 struct BagRecorder::Impl {
   std::filesystem::path root;
-  scenario::RecordSettings settings;
+  RecordSettings settings;
   SessionPaths paths;
   std::string id;
   scenario::Condition condition = scenario::Condition::ChildChild;
@@ -303,7 +303,7 @@ struct BagRecorder::Impl {
   }
 };
 
-BagRecorder::BagRecorder(std::filesystem::path sessions_root, scenario::RecordSettings settings)
+BagRecorder::BagRecorder(std::filesystem::path sessions_root, RecordSettings settings)
     : impl_(std::make_unique<Impl>()) {
   impl_->root = std::move(sessions_root);
   impl_->settings = std::move(settings);

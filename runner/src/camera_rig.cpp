@@ -66,7 +66,7 @@ stage::ChildRole role_of(const std::string& seat) {
 }
 
 /// The colour and depth image sizes of one scenario camera (the renderer checks both, even without depth).
-std::pair<cv::Size, cv::Size> image_sizes(const stage::StageModel& model, const scenario::CameraStream& camera) {
+std::pair<cv::Size, cv::Size> image_sizes(const stage::StageModel& model, const stage::CameraStream& camera) {
   const auto& spec = model.camera(camera.name);
   const cv::Size color(camera.width, camera.height);
   const bool depth_follows_color = spec.depth.width == spec.color.width && spec.depth.height == spec.color.height;
@@ -75,7 +75,7 @@ std::pair<cv::Size, cv::Size> image_sizes(const stage::StageModel& model, const 
 
 }  // namespace
 
-stage::RendererOptions renderer_options(const scenario::RenderingSettings& rendering) {
+stage::RendererOptions renderer_options(const stage::RenderingSettings& rendering) {
   stage::RendererOptions options;
   options.backend = rendering.backend.empty() ? stage::default_gl_backend() : stage::gl_backend_from_name(rendering.backend);
   options.preset = stage::visual_preset_from_name(rendering.preset);

@@ -139,7 +139,9 @@ ControllerSpec controller_from(const YAML::Node& node) {
 
 std::shared_ptr<const Schema> build_scenario_schema(const ScenarioVocabulary& vocabulary) {
   auto record_map = std::vector<Field>{with_default("bag", S::boolean(), "true", "write the ROS bag")};
-  for (auto& f : SchemaArchive::fields_of<RecordSettings>(vocabulary)) record_map.push_back(std::move(f));
+  for (auto& f : SchemaArchive::fields_of<recording::RecordSettings>(vocabulary.voices)) {
+    record_map.push_back(std::move(f));
+  }
   return S::map({
       required("name", S::string(), "short identifier"),
       with_default("description", S::string(), "\"\""),
@@ -150,13 +152,13 @@ std::shared_ptr<const Schema> build_scenario_schema(const ScenarioVocabulary& vo
       optional("condition", S::enumeration(enum_names(kEpisodeConditions)), "required for kind: episode"),
       with_default("episodes", S::integer(1, 1000000), "1"),
       with_default("seed", S::integer(0, std::numeric_limits<long long>::max()), "1"),
-      with_default("children", settings_schema<ChildrenSettings>(), "{}"),
+      with_default("children", settings_schema<agents::ChildrenSettings>(), "{}"),
       with_default("robot", settings_schema<RobotSettings>(vocabulary), "{}"),
-      with_default("planner", settings_schema<PlannerSettings>(vocabulary.planners), "{}"),
+      with_default("planner", settings_schema<planning::PlannerSettings>(vocabulary.planners), "{}"),
       with_default("perception", settings_schema<PerceptionSettings>(), "{}"),
       with_default("protocol", settings_schema<Protocol>(), "{}"),
-      with_default("cameras", S::list(settings_schema<CameraStream>(vocabulary)), "[]"),
-      with_default("rendering", settings_schema<RenderingSettings>(), "{}", "how the cameras are rendered"),
+      with_default("cameras", S::list(settings_schema<stage::CameraStream>(vocabulary.cameras)), "[]"),
+      with_default("rendering", settings_schema<stage::RenderingSettings>(), "{}", "how the cameras are rendered"),
       with_default("record",
                    S::one_of({S::boolean(), S::map(std::move(record_map))},
                              "true, false, or a map {bag: bool, jpeg_quality: 1–100, png_level: 0–9, "
@@ -243,16 +245,16 @@ Scenario scenario_from_document(YamlDocument document, const std::vector<std::st
   s.condition = condition;
   s.episodes = root["episodes"].as<int>();
   s.seed = root["seed"].as<std::uint64_t>();
-  s.children = read_settings<ChildrenSettings>(root["children"]);
+  s.children = read_settings<agents::ChildrenSettings>(root["children"]);
   s.robot = read_settings<RobotSettings>(root["robot"], vocabulary);
-  s.planner = read_settings<PlannerSettings>(root["planner"], vocabulary.planners);
+  s.planner = read_settings<planning::PlannerSettings>(root["planner"], vocabulary.planners);
   s.perception = read_settings<PerceptionSettings>(root["perception"]);
   s.protocol = read_settings<Protocol>(root["protocol"]);
-  for (const auto& c : root["cameras"]) s.cameras.push_back(read_settings<CameraStream>(c, vocabulary));
-  s.rendering = read_settings<RenderingSettings>(root["rendering"]);
+  for (const auto& c : root["cameras"]) s.cameras.push_back(read_settings<stage::CameraStream>(c, vocabulary.cameras));
+  s.rendering = read_settings<stage::RenderingSettings>(root["rendering"]);
   if (const auto& r = root["record"]; r.IsMap()) {
     s.record = r["bag"].as<bool>();
-    s.recording = read_settings<RecordSettings>(r, vocabulary);
+    s.recording = read_settings<recording::RecordSettings>(r, vocabulary.voices);
   } else {
     s.record = r.as<bool>();
   }

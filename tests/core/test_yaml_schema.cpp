@@ -63,6 +63,24 @@ TEST(SettingsArchive, ReadsEveryKeyAndValidatesRanges) {
   }
 }
 
+TEST(SettingsArchive, AnUnvalidatedNodeIsValidatedUnderItsPathThenRead) {
+  EXPECT_EQ(read_unvalidated_settings<Example>(YAML::Node(), "params").count, 3);  // absent: every default
+  EXPECT_EQ(read_unvalidated_settings<Example>(YAML::Load("~"), "params").mode, "fast");
+  const YAML::Node given = YAML::Load("{count: 7}");
+  EXPECT_EQ(read_unvalidated_settings<Example>(given, "params").count, 7);
+  EXPECT_FALSE(given["rate"].IsDefined());  // the defaults go into a copy, not into the caller's node
+  try {
+    read_unvalidated_settings<Example>(YAML::Load("{count: 11, on: maybe}"), "robot.params");
+    FAIL() << "no error";
+  } catch (const InputError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("'robot.params.count': 11 is out of range (allowed: an integer in [0, 10])"),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find("'robot.params.on'"), std::string::npos) << message;
+  }
+}
+
 TEST(SettingsArchive, DefaultsAreWrittenAsTheShortestText) {
   EXPECT_EQ(default_yaml_text(0.98), "0.98");
   EXPECT_EQ(default_yaml_text(5.0), "5");

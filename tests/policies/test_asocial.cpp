@@ -156,3 +156,29 @@ TEST(Asocial, RejectsBadParameters) {
   EXPECT_THROW(AsocialPolicy(YAML::Load("{pause_min_s: 3, pause_max_s: 1}")), InputError);
   EXPECT_THROW(AsocialPolicy(YAML::Load("{pause: 3}")), InputError);
 }
+
+// The parameters are one settings struct (core/settings_archive.hpp): its initialisers are the original's pauses, and
+// a bad value names its key under `robot.params` with the allowed range or keys.
+TEST(Asocial, ParametersDefaultToTheOriginalAndNameTheBadKey) {
+  const AsocialParams defaults;
+  EXPECT_DOUBLE_EQ(defaults.pause_min_s, 1.2);
+  EXPECT_DOUBLE_EQ(defaults.pause_max_s, 2.5);
+  EXPECT_DOUBLE_EQ(defaults.idle_pause_s, 0.3);
+  EXPECT_NO_THROW(AsocialPolicy(YAML::Node()));
+  EXPECT_NO_THROW(AsocialPolicy(YAML::Load("{pause_min_s: 0.5}")));
+  const auto message_of = [](const char* params) {
+    try {
+      AsocialPolicy policy{YAML::Load(params)};
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string range = message_of("{idle_pause_s: 61}");
+  EXPECT_NE(range.find("'robot.params.idle_pause_s'"), std::string::npos) << range;
+  EXPECT_NE(range.find("[0, 60]"), std::string::npos) << range;
+  const std::string unknown = message_of("{pause: 3}");
+  EXPECT_NE(unknown.find("allowed: pause_min_s, pause_max_s, idle_pause_s"), std::string::npos) << unknown;
+  const std::string order = message_of("{pause_min_s: 3}");  // above the default upper bound
+  EXPECT_NE(order.find("pause_max_s is below pause_min_s"), std::string::npos) << order;
+}

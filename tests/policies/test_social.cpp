@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include "freeplay/core/error.hpp"
 #include "freeplay/policies/play_policy.hpp"
 
 using namespace freeplay;
@@ -107,4 +108,26 @@ TEST(SocialPolicy, ProposesAnIdeaWhenTheChildIsIdle) {
   const auto said = of_type<Say>(policy->decide(o));
   ASSERT_EQ(said.size(), 1u);
   EXPECT_EQ(said[0].addressee, "purple");
+}
+
+// The parameters are one settings struct read through core/settings_archive.hpp: a bad value names its key under
+// `robot.params` with the allowed range or keys.
+TEST(Social, BadParametersNameTheKey) {
+  const auto message_of = [](const char* params) {
+    try {
+      make_policy("social", YAML::Load(params));
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string range = message_of("{join_probability: 2}");
+  EXPECT_NE(range.find("'robot.params.join_probability'"), std::string::npos) << range;
+  EXPECT_NE(range.find("[0, 1]"), std::string::npos) << range;
+  const std::string unknown = message_of("{delay: 1}");
+  EXPECT_NE(unknown.find("allowed: reaction_delay_s, praise_probability, join_probability, idle_proposal_s, "
+                         "disengaged_s, turn_timeout_s, join_offset_m, min_move_m"),
+            std::string::npos)
+      << unknown;
+  EXPECT_EQ(message_of("{}"), "no error");
 }

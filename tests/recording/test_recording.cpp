@@ -655,7 +655,7 @@ namespace {
 // Writes camera frames straight to a recorder with `threads` encoder threads: purple with depth, env_camera without,
 // each image repeated for three 30 Hz stamps (as the rig hands over a 10 Hz tick's image); returns the bag's path.
 std::filesystem::path record_frames(const std::filesystem::path& dir, int threads) {
-  scenario::RecordSettings settings;
+  RecordSettings settings;
   settings.encoder_threads = threads;
   BagRecorder recorder(dir / "sessions", settings);
   recorder.begin({nullptr, "frames-0000", 1});
@@ -703,7 +703,7 @@ TEST(BagRecorder, EncoderThreadsLeaveTheBagByteForByteTheSame) {
 TEST(BagRecorder, AnImageThatFailsToEncodeIsReportedAndTheBagIsClosed) {
   for (const int threads : {0, 2}) {
     const auto dir = fresh_dir("bad-frame-" + std::to_string(threads));
-    scenario::RecordSettings settings;
+    RecordSettings settings;
     settings.encoder_threads = threads;
     BagRecorder recorder(dir / "sessions", settings);
     recorder.begin({nullptr, "bad-0000", 1});

@@ -7,13 +7,15 @@ using namespace freeplay::scenario;
 
 namespace {
 
-Scenario parse(const std::string& text, const std::vector<std::string>& overrides = {}) {
-  return scenario_from_document(parse_yaml(text, "test.yaml"), overrides);
+Scenario parse(const std::string& text, const std::vector<std::string>& overrides = {},
+               const ScenarioVocabulary& vocabulary = {}) {
+  return scenario_from_document(parse_yaml(text, "test.yaml"), overrides, vocabulary);
 }
 
-std::string error_of(const std::string& text, const std::vector<std::string>& overrides = {}) {
+std::string error_of(const std::string& text, const std::vector<std::string>& overrides = {},
+                     const ScenarioVocabulary& vocabulary = {}) {
   try {
-    parse(text, overrides);
+    parse(text, overrides, vocabulary);
   } catch (const InputError& e) {
     return e.what();
   }
@@ -157,4 +159,101 @@ TEST(Scenario, PinsoroSpellingRoundTrips) {
   EXPECT_FALSE(agents::from_pinsoro_name("child-robot", unchanged));
   EXPECT_FALSE(agents::from_pinsoro_name("controller", unchanged));
   EXPECT_EQ(unchanged, Condition::Controller);
+}
+
+// Each block a scenario leaves out takes the defaults of the library that declares its settings (one home each); the
+// literal values are the documented ones (README, Settings; docs/recording.md).
+TEST(Scenario, EachLeftOutBlockTakesItsLibrarysDefaults) {
+  const auto s = parse("name: cc\ncondition: child-child\n");
+  EXPECT_EQ(s.rendering, stage::RenderingSettings{});
+  EXPECT_EQ(s.rendering.backend, "");
+  EXPECT_EQ(s.rendering.preset, "fast");
+  EXPECT_FALSE(s.record);
+  EXPECT_EQ(s.recording, recording::RecordSettings{});
+  EXPECT_EQ(s.recording.jpeg_quality, 90);
+  EXPECT_EQ(s.recording.png_level, 3);
+  EXPECT_EQ(s.recording.chunk_kb, 768);
+  EXPECT_EQ(s.recording.compression, "none");
+  EXPECT_EQ(s.recording.encoder_threads, 2);
+  EXPECT_EQ(s.recording.voice, "babble");
+  // `record: true` and a map without the keys give the recorder's defaults too.
+  const auto on = parse("name: cc\ncondition: child-child\nrecord: true\n");
+  EXPECT_TRUE(on.record);
+  EXPECT_EQ(on.recording, recording::RecordSettings{});
+  const auto map = parse("name: cc\ncondition: child-child\nrecord: {bag: false}\n");
+  EXPECT_FALSE(map.record);
+  EXPECT_EQ(map.recording, recording::RecordSettings{});
+  EXPECT_EQ(parse("name: cc\ncondition: child-child\nrecord: {}\n").record, true);
+}
+
+TEST(Scenario, ACameraWithOnlyItsNameTakesTheStagesDefaults) {
+  const auto s = parse("name: cc\ncondition: child-child\ncameras: [{name: camera_purple}]\n");
+  ASSERT_EQ(s.cameras.size(), 1u);
+  stage::CameraStream expected;
+  expected.name = "camera_purple";
+  EXPECT_EQ(s.cameras[0], expected);
+  EXPECT_DOUBLE_EQ(s.cameras[0].rate_hz, 30.0);
+  EXPECT_EQ(s.cameras[0].width, 960);
+  EXPECT_EQ(s.cameras[0].height, 540);
+  EXPECT_FALSE(s.cameras[0].depth);
+  EXPECT_FALSE(s.cameras[0].video);
+}
+
+TEST(Scenario, MovedBlocksKeepTheirKeysAndValues) {
+  const auto s = parse(
+      "name: cr\ncondition: child-robot\n"
+      "cameras: [{name: CameraTop, rate_hz: 10, width: 320, height: 240, depth: true, video: true}]\n"
+      "rendering: {backend: egl, preset: pretty}\n"
+      "record: {bag: true, jpeg_quality: 50, png_level: 9, chunk_kb: 16, compression: lz4, encoder_threads: 0, "
+      "voice: espeak}\n");
+  ASSERT_EQ(s.cameras.size(), 1u);
+  EXPECT_EQ(s.cameras[0].name, "CameraTop");
+  EXPECT_DOUBLE_EQ(s.cameras[0].rate_hz, 10.0);
+  EXPECT_EQ(s.cameras[0].width, 320);
+  EXPECT_EQ(s.cameras[0].height, 240);
+  EXPECT_TRUE(s.cameras[0].depth);
+  EXPECT_TRUE(s.cameras[0].video);
+  EXPECT_EQ(s.rendering.backend, "egl");
+  EXPECT_EQ(s.rendering.preset, "pretty");
+  EXPECT_TRUE(s.record);
+  EXPECT_EQ(s.recording.jpeg_quality, 50);
+  EXPECT_EQ(s.recording.png_level, 9);
+  EXPECT_EQ(s.recording.chunk_kb, 16);
+  EXPECT_EQ(s.recording.compression, "lz4");
+  EXPECT_EQ(s.recording.encoder_threads, 0);
+  EXPECT_EQ(s.recording.voice, "espeak");
+}
+
+TEST(Scenario, MovedBlocksNameTheKeyAndTheAllowedValues) {
+  const auto expect_error = [](const std::string& text, const std::string& wanted) {
+    const std::string msg = error_of("name: cc\ncondition: child-child\n" + text);
+    EXPECT_NE(msg.find(wanted), std::string::npos) << msg;
+  };
+  expect_error("rendering: {preset: ugly}\n",
+               "'rendering.preset': unknown value 'ugly' (allowed: one of fast, pretty)");
+  expect_error("rendering: {backend: vulkan}\n",
+               "'rendering.backend': unknown value 'vulkan' (allowed: one of osmesa, egl)");
+  expect_error("rendering: {msaa: 4}\n", "allowed: backend, preset");
+  expect_error("cameras: [{name: camera_purple, width: 8}]\n", "'cameras[0].width'");
+  expect_error("cameras: [{name: camera_purple, width: 8}]\n", "integer in [16, 4096]");
+  expect_error("cameras: [{name: kinect}]\n", "'cameras[0].name': unknown value 'kinect' (allowed: one of "
+                                              "camera_purple, camera_yellow, env_camera, CameraTop, CameraBottom)");
+  expect_error("cameras: [{name: camera_purple, fps: 30}]\n", "allowed: name, rate_hz, width, height, depth, video");
+  expect_error("record: {voice: robotic}\n",
+               "'record.voice': unknown value 'robotic' (allowed: one of babble, espeak)");
+  expect_error("record: {compression: zip}\n",
+               "'record.compression': unknown value 'zip' (allowed: one of none, lz4, bz2)");
+  expect_error("record: {jpeg_quality: 0}\n", "'record.jpeg_quality'");
+  expect_error("record: {jpeg_quality: 0}\n", "integer in [1, 100]");
+  expect_error("record: {bags: true}\n",
+               "allowed: bag, jpeg_quality, png_level, chunk_kb, compression, encoder_threads, voice");
+}
+
+TEST(Scenario, VoicesComeFromTheRecorder) {
+  const ScenarioVocabulary vocabulary;
+  EXPECT_EQ(vocabulary.voices, std::vector<std::string>(recording::kVoiceNames.begin(), recording::kVoiceNames.end()));
+  ScenarioVocabulary babble_only;
+  babble_only.voices = {"babble"};
+  const auto msg = error_of("name: cc\ncondition: child-child\nrecord: {voice: espeak}\n", {}, babble_only);
+  EXPECT_NE(msg.find("'record.voice': unknown value 'espeak' (allowed: one of babble)"), std::string::npos) << msg;
 }

@@ -3,9 +3,9 @@
 // Serialize pattern): a struct declares `template <class Archive> void visit(Archive& a)` calling
 // `a.field(key, member, schema, help)` (or `a.required` / `a.optional`) once per member; its member initialisers are
 // the defaults. `settings_schema<T>()` builds the map schema from that list and `read_settings<T>(node)` fills a
-// struct from a node the schema validated. An enum member is written with `to_string(value)` and read with
-// `from_string(text, value)`, the one name/value pair its library declares next to it (found by argument-dependent
-// lookup); `enum_names` lists the names its schema allows.
+// struct from a node the schema validated (`read_unvalidated_settings<T>(node, path)` validates it first). An enum
+// member is written with `to_string(value)` and read with `from_string(text, value)`, the one name/value pair its
+// library declares next to it (found by argument-dependent lookup); `enum_names` lists the names its schema allows.
 
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
@@ -135,6 +135,18 @@ T read_settings(const YAML::Node& node, const Context&... context) {
   ReadArchive archive(node);
   settings.visit(archive, context...);
   return settings;
+}
+
+/// Settings struct `T` from a node nothing validated yet (absent or null: every default), such as a policy's
+/// `robot.params`: validated against `settings_schema<T>()` with keys named under `path` (one InputError listing every
+/// problem), then read.
+template <typename T, typename... Context>
+T read_unvalidated_settings(const YAML::Node& node, const std::string& path, const Context&... context) {
+  YAML::Node copy = node.IsDefined() && !node.IsNull() ? YAML::Clone(node) : YAML::Node(YAML::NodeType::Map);
+  ValidationErrors errors;
+  settings_schema<T>(context...)->validate(copy, path, "", errors);
+  errors.throw_if_any();
+  return read_settings<T>(copy, context...);
 }
 
 }  // namespace freeplay

@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "freeplay/core/settings_archive.hpp"
 #include "freeplay/policies/play_policy.hpp"
 
 namespace freeplay::policies {
@@ -16,12 +17,27 @@ const std::vector<std::string>& asocial_item_order();
 /// The real play node's habitat table (`HABITATS`): item → zone colours it belongs to.
 const std::map<std::string, std::vector<std::string>>& asocial_habitats();
 
+/// The asocial policy's `robot.params` (defaults = the original's pauses).
+struct AsocialParams {
+  double pause_min_s = 1.2;   ///< pause after a move: lower bound (s)
+  double pause_max_s = 2.5;   ///< pause after a move: upper bound (s)
+  double idle_pause_s = 0.3;  ///< pause when nothing was moved (s)
+
+  /// The keys of the asocial policy's `robot.params`.
+  template <typename Archive>
+  void visit(Archive& a) {
+    a.field("pause_min_s", pause_min_s, Schema::number(0, 60), "pause after a move: lower bound");
+    a.field("pause_max_s", pause_max_s, Schema::number(0, 60), "pause after a move: upper bound");
+    a.field("idle_pause_s", idle_pause_s, Schema::number(0, 60), "pause when nothing was moved");
+  }
+};
+
 /// Moves one reachable item that is not in one of its habitats to the closest reachable centroid of a randomly
 /// chosen habitat colour, then pauses U(1.2, 2.5) s (0.3 s when there was nothing to do). Never perceives the
 /// children, never checks whether a child holds the item (as the original).
 class AsocialPolicy final : public PlayPolicy {
  public:
-  /// Accepts parameters `pause_min_s`, `pause_max_s`, `idle_pause_s` (defaults = the original 1.2, 2.5, 0.3).
+  /// Reads `params` as AsocialParams (absent keys: the original's pauses); InputError naming `robot.params.KEY`.
   explicit AsocialPolicy(const YAML::Node& params);
   std::string name() const override { return "asocial"; }
   void reset(const PolicyContext& context, Rng rng) override;
@@ -33,9 +49,7 @@ class AsocialPolicy final : public PlayPolicy {
 
  private:
   std::vector<std::pair<Vec2, Vec2>> zone_boxes_;  // bounds() of the observation's zones, rebuilt by choose_move
-  double pause_min_s_ = 1.2;
-  double pause_max_s_ = 2.5;
-  double idle_pause_s_ = 0.3;
+  AsocialParams params_;
   Rng rng_{0};
   double resume_at_ = 0.0;
   bool waiting_for_result_ = false;

@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "freeplay/recording/record_settings.hpp"
 #include "freeplay/recording/tick_topics.hpp"
 #include "freeplay/runner/episode.hpp"
 #include "freeplay/runner/episode_observer.hpp"
@@ -51,7 +52,7 @@ struct RecordingStats {
 class BagRecorder final : public runner::EpisodeObserver, public runner::FrameSink {
  public:
   /// A recorder writing `sessions_root/<episode id>/` with `settings`.
-  explicit BagRecorder(std::filesystem::path sessions_root, scenario::RecordSettings settings = {});
+  explicit BagRecorder(std::filesystem::path sessions_root, RecordSettings settings = {});
   /// Closes an open bag as `abort` does.
   ~BagRecorder() override;
   BagRecorder(const BagRecorder&) = delete;

@@ -13,6 +13,7 @@
 #include "freeplay/runner/frame_sink.hpp"
 #include "freeplay/scenario/scenario.hpp"
 #include "freeplay/stage/avatar_controller.hpp"
+#include "freeplay/stage/camera_settings.hpp"
 #include "freeplay/stage/nao_controller.hpp"
 #include "freeplay/stage/renderer.hpp"
 #include "freeplay/stage/stage.hpp"
@@ -20,7 +21,7 @@
 namespace freeplay::runner {
 
 /// The renderer settings of a scenario's `rendering:` section ($MUJOCO_GL, else OSMesa, when no backend is named).
-stage::RendererOptions renderer_options(const scenario::RenderingSettings& rendering);
+stage::RendererOptions renderer_options(const stage::RenderingSettings& rendering);
 
 /// The stage model a snapshot's episode needs: its scene, and the children's mean age (one size fits both avatars).
 stage::StageConfig stage_config_for(const EpisodeSnapshot& snapshot);
@@ -93,7 +94,7 @@ class CameraRig final : public EpisodeObserver {
  private:
   void start(const EpisodeSnapshot& snapshot);
 
-  std::vector<scenario::CameraStream> cameras_;
+  std::vector<stage::CameraStream> cameras_;
   stage::RendererOptions options_;
   std::vector<FrameSink*> sinks_;
   std::unique_ptr<StageMirror> mirror_;

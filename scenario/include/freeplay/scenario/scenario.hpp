@@ -81,7 +81,7 @@ using agents::from_string;
 using agents::pinsoro_name;
 using agents::to_string;
 
-/// A validated scenario.
+/// A validated scenario. Each block's settings are declared by the library that uses them (settings.hpp lists where).
 struct Scenario {
   std::string name;                      ///< short identifier, used in output names
   std::string description;               ///< one line for people
@@ -91,15 +91,15 @@ struct Scenario {
   Condition condition = Condition::ChildChild;  ///< who plays (controller for kind controller)
   int episodes = 1;                      ///< episodes to run
   std::uint64_t seed = 1;                ///< root seed; episode i uses SeedSequence(seed).derive("episode/i")
-  ChildrenSettings children;             ///< who plays (population, explicit profile fields)
+  agents::ChildrenSettings children;     ///< who plays (population, explicit profile fields)
   RobotSettings robot;                   ///< the robot's policy and body (child-robot only)
-  PlannerSettings planner;               ///< the motion planner of the robot's item moves
+  planning::PlannerSettings planner;     ///< the motion planner of the robot's item moves
   PerceptionSettings perception;         ///< the robot's perception noise and latency
   Protocol protocol;                     ///< stage durations
-  std::vector<CameraStream> cameras;     ///< camera output (none: no rendering)
-  RenderingSettings rendering;           ///< GL backend and visual preset of the cameras
+  std::vector<stage::CameraStream> cameras;  ///< camera output (none: no rendering)
+  stage::RenderingSettings rendering;    ///< GL backend and visual preset of the cameras
   bool record = false;                   ///< write a ROS bag per episode
-  RecordSettings recording;              ///< how (when `record`)
+  recording::RecordSettings recording;   ///< how (when `record`)
   YAML::Node source;                     ///< the validated document with defaults filled in
   std::uint64_t config_hash = 0;         ///< hash of the validated document (reproducibility)
 };

@@ -1,10 +1,12 @@
 #pragma once
-// The typed settings of each subsystem a scenario configures (children, robot, planner, perception, protocol,
-// cameras, rendering, recording, controller): one struct each, whose member initialisers are the defaults and whose
+// The typed settings a scenario configures: one struct per block, whose member initialisers are the defaults and whose
 // `visit` lists the keys, ranges and help once; the scenario parser composes their schemas and readers
-// (core/settings_archive.hpp). The planner's settings are declared by the planning library
-// (planning/planner_settings.hpp) and the children's by the agents library (agents/children_settings.hpp); the others
-// still live here.
+// (core/settings_archive.hpp). Each library that sits below this parser declares its own settings next to the code
+// that uses them, header-only: the planner's (planning/planner_settings.hpp), the children's
+// (agents/children_settings.hpp), the cameras' and the renderer's (stage/camera_settings.hpp) and the recorder's
+// (recording/record_settings.hpp). The settings of the robot, its perception and the protocol are read by the episode
+// loop (runner/), which is built on this library; declaring them there would point the parser up the layering, so they
+// stay here (as the controller's do, in scenario.hpp).
 
 #include <optional>
 #include <string>
@@ -15,7 +17,9 @@
 #include "freeplay/core/settings_archive.hpp"
 #include "freeplay/planning/planner_settings.hpp"
 #include "freeplay/policies/policy_names.hpp"
+#include "freeplay/recording/record_settings.hpp"
 #include "freeplay/stage/camera_names.hpp"
+#include "freeplay/stage/camera_settings.hpp"
 #include "freeplay/stage/stage_mode.hpp"
 
 namespace freeplay::scenario {
@@ -26,7 +30,8 @@ struct ScenarioVocabulary {
   std::vector<std::string> planners{planning::kPlannerNames.begin(), planning::kPlannerNames.end()};  ///< planners
   std::vector<std::string> cameras = stage::real_camera_names();  ///< stage cameras of the real setup
   std::vector<std::string> items{agents::kItemNames.begin(), agents::kItemNames.end()};  ///< sandtray items
-  std::vector<std::string> voices = {"babble", "espeak"};  ///< audio voices (`record.voice`) this binary has
+  /// Audio voices (`record.voice`) this binary has.
+  std::vector<std::string> voices{recording::kVoiceNames.begin(), recording::kVoiceNames.end()};
 
   /// Same names in the same order.
   bool operator==(const ScenarioVocabulary&) const = default;
@@ -90,62 +95,11 @@ struct Protocol {
   }
 };
 
-/// One camera stream the scenario asks for (an element of `cameras:`).
-struct CameraStream {
-  std::string name;      ///< stage camera name
-  double rate_hz = 30;   ///< frames per simulated second
-  int width = 960;       ///< pixels
-  int height = 540;      ///< pixels
-  bool depth = false;    ///< also read back depth
-  bool video = false;    ///< write `videos/<episode>/<name>.mp4`
-
-  /// The keys of one camera (names from `vocabulary`).
-  template <typename Archive>
-  void visit(Archive& a, const ScenarioVocabulary& vocabulary) {
-    a.required("name", name, Schema::enumeration(vocabulary.cameras));
-    a.field("rate_hz", rate_hz, Schema::number(0.1, 60));
-    a.field("width", width, Schema::integer(16, 4096));
-    a.field("height", height, Schema::integer(16, 4096));
-    a.field("depth", depth, Schema::boolean());
-    a.field("video", video, Schema::boolean(), "write videos/<episode>/<name>.mp4 (mp4v, fps = rate_hz)");
-  }
-};
-
-/// `rendering:` how the cameras are rendered.
-struct RenderingSettings {
-  std::string backend;          ///< "osmesa" | "egl"; empty: $MUJOCO_GL, else osmesa
-  std::string preset = "fast";  ///< "fast" | "pretty"
-
-  /// The keys of `rendering:`.
-  template <typename Archive>
-  void visit(Archive& a) {
-    a.optional("backend", backend, Schema::enumeration({"osmesa", "egl"}), "GL provider; default $MUJOCO_GL, else osmesa");
-    a.field("preset", preset, Schema::enumeration({"fast", "pretty"}),
-            "fast: no MSAA/shadows/reflections/skybox; pretty: 4x MSAA, shadows, skybox");
-  }
-};
-
-/// How an episode is recorded (`record:` as a map; docs/recording.md).
-struct RecordSettings {
-  int jpeg_quality = 90;              ///< colour JPEG quality (the real launch files: 90)
-  int png_level = 3;                  ///< PNG level of depth and background images (the real launch files: 3)
-  int chunk_kb = 768;                 ///< bag chunk size (rosbag's default): at most this much is lost on a kill
-  std::string compression = "none";   ///< bag chunk compression: "none" (as the real bags), "lz4", "bz2"
-  int encoder_threads = 2;            ///< threads compressing camera images (0: on the episode's own thread)
-  std::string voice = "babble";       ///< speech synthesiser of the audio: "babble" (ours) or "espeak" (espeak-ng)
-
-  /// The keys of the `record:` map besides `bag`.
-  template <typename Archive>
-  void visit(Archive& a, const ScenarioVocabulary& vocabulary) {
-    a.field("jpeg_quality", jpeg_quality, Schema::integer(1, 100));
-    a.field("png_level", png_level, Schema::integer(0, 9));
-    a.field("chunk_kb", chunk_kb, Schema::integer(16, 1 << 20));
-    a.field("compression", compression, Schema::enumeration({"none", "lz4", "bz2"}));
-    a.field("encoder_threads", encoder_threads, Schema::integer(0, 64),
-            "threads compressing camera images (0: the episode's thread)");
-    a.field("voice", voice, Schema::enumeration(vocabulary.voices),
-            "speech synthesiser of the audio: babble (ours) or espeak (espeak-ng, GPL-3; only in binaries built with it)");
-  }
-};
+/// One element of `cameras:` (declared by the stage library, stage/camera_settings.hpp).
+using stage::CameraStream;
+/// `rendering:` how the cameras are rendered (declared by the stage library, stage/camera_settings.hpp).
+using stage::RenderingSettings;
+/// `record:` as a map: how an episode is recorded (declared by the recording library, recording/record_settings.hpp).
+using recording::RecordSettings;
 
 }  // namespace freeplay::scenario
