@@ -203,6 +203,18 @@ class GraphRobot final : public runner::RobotActionSource, public policies::Play
     return out;
   }
 
+  /// A move the robot side did not drive (its item not on the tray) ends its goal here; the driver's ends came first.
+  void on_result(const policies::ActionResult& result) override {
+    if (result.kind == policies::ActionResult::Kind::SpeechFinished) return;
+    if (ends_heard_ > 0) {
+      --ends_heard_;
+      return;
+    }
+    if (waiting_.empty()) return;
+    live_.graph->goal_done(waiting_.front(), ros_graph::GoalEnd::Aborted, "not executed: " + result.reason);
+    waiting_.pop_front();
+  }
+
   // ---- the driver's moves back to the graph: `/poses`, the action's feedback and result ----
   void move_started(const policies::MoveItem& /*move*/, bool running, double /*t*/) override {
     active_ = waiting_.front();
@@ -224,6 +236,7 @@ class GraphRobot final : public runner::RobotActionSource, public policies::Play
     live_.graph->goal_done(*active_, end, text);
     active_.reset();
     running_ = false;
+    ++ends_heard_;
   }
 
   /// Answers the waiting `plan_motion` requests on the game as it is now (map_and_plan serves in every stage).
@@ -280,6 +293,7 @@ class GraphRobot final : public runner::RobotActionSource, public policies::Play
   std::deque<std::uint64_t> waiting_;         // goals handed to the robot side, not started yet (in order)
   std::optional<std::uint64_t> active_;       // the goal the driver runs (started, not ended)
   bool running_ = false;                      // the active goal's move streams poses (a cancel can stop it)
+  int ends_heard_ = 0;                        // driver ends whose ActionResult has not reached on_result yet
   const sim::Sandtray* tray_ = nullptr;       // the game at the last tick
   double stamp_ = 0.0;                        // ROS time of the last tick
 };
