@@ -7,6 +7,7 @@
 
 #include "freeplay/runner/episode.hpp"
 #include "freeplay/runner/robot_side.hpp"
+#include "speaker_source.hpp"
 
 using namespace freeplay;
 using namespace freeplay::runner;
@@ -56,22 +57,6 @@ class OneMove final : public policies::PlayPolicy {
   bool bad_asked_ = false;
 };
 
-// Speaks once at free-play second 2 (the poses-from-outside side of the front).
-class Speaker final : public RobotActionSource {
- public:
-  RobotCommands commands(double t, const sim::Sandtray& /*tray*/, const ReachDisc& /*reach*/) override {
-    RobotCommands out;
-    if (!said_ && t >= 2.0 - 1e-9) {
-      said_ = true;
-      out.say.push_back({"Look at this!", ""});
-    }
-    return out;
-  }
-
- private:
-  bool said_ = false;
-};
-
 // Hears the driver's moves (as the graph's move_sandbox_items server does).
 class Listener final : public MoveObserver {
  public:
@@ -96,7 +81,7 @@ class Listener final : public MoveObserver {
 TEST(EpisodeExternalRobot, DecisionsBesidePosesFromOutsideMoveThroughTheOneDriverAndItsObserverHearsThem) {
   const auto s = child_robot_scenario();
   OneMove decisions;
-  Speaker poses;
+  test::Speaker poses("Look at this!", "");  // the poses-from-outside side of the front
   Listener listener;
   const auto r = run_episode(
       {.scenario = s, .seed = 3, .id = "external", .decisions = &decisions, .robot = &poses, .moves = &listener});
@@ -130,7 +115,7 @@ TEST(EpisodeExternalRobot, DecisionsBesidePosesFromOutsideMoveThroughTheOneDrive
 
 TEST(EpisodeExternalRobot, PosesFromOutsideAloneReplaceTheRobotSide) {
   const auto s = child_robot_scenario();
-  Speaker poses;
+  test::Speaker poses("Look at this!", "");  // the poses-from-outside side of the front
   const auto r = run_episode({.scenario = s, .seed = 3, .id = "poses-only", .robot = &poses});
   for (const auto& e : r.events.events()) {
     EXPECT_FALSE(e.source == "robot" && (e.type() == "move_goal" || e.type() == "move_result")) << e.type();
