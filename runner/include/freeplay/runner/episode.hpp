@@ -68,7 +68,8 @@ struct EpisodeInputs {
   /// The children's free-play actions instead of the synthetic agents' (which then leave no annotations), or null.
   ChildActionSource* children = nullptr;
   /// Child-robot scenarios: what decides for the robot instead of the scenario's policy, in front of the one robot
-  /// side (the web page's wizard and SPARC modes); reset by the episode, not owned; or null.
+  /// side (the web page's wizard and SPARC modes, `freeplay serve --robot external`'s goals); reset by the episode,
+  /// not owned; or null.
   policies::PlayPolicy* decisions = nullptr;
   /// Child-robot scenarios: the robot's finger poses from outside (a live graph's `/poses`), or null. Without
   /// `decisions` they replace the robot side; with them, both act (the poses first, at every free-play tick).
