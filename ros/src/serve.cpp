@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <deque>
 #include <optional>
 #include <set>
 #include <stdexcept>
@@ -18,6 +19,7 @@
 #include "freeplay/ros/localisation_node.hpp"
 #include "freeplay/runner/camera_rig.hpp"
 #include "freeplay/runner/move_driver.hpp"
+#include "freeplay/policies/play_policy.hpp"
 #include "freeplay/runner/sandtray_world.hpp"
 #include "freeplay/scenario/scenario.hpp"
 #include "freeplay/sim/screen.hpp"
@@ -158,31 +160,83 @@ class GraphSignals final : public runner::SignalSource {
   ServedLocalisation* localisation_;
 };
 
-/// `--robot external`: the finger follows `/poses` from the graph, and the `move_sandbox_items` action and
-/// `plan_motion` service run here on the episode's clock (as the real core nodes beside the game); a goal is driven
-/// by the one move driver, whose poses reach the game as the graph's do.
-class GraphRobot final : public runner::RobotActionSource, private runner::MoveSink {
+/// `--robot external`: the robot's side on the graph, in front of the episode's one robot side. `/poses` from the
+/// graph reach the game as the real game takes them (the Nao follows); `move_sandbox_items` goals, gaze and pointing
+/// targets become the robot side's actions (a goal is driven by the episode's one move driver, so the event log holds
+/// its move events as an in-process episode's); the driver's poses, feedback and result go back to the graph (as
+/// the real core nodes beside the game); `plan_motion` is answered here on the episode's clock.
+class GraphRobot final : public runner::RobotActionSource, public policies::PlayPolicy, public runner::MoveObserver {
  public:
   GraphRobot(Live& live, const scenario::Scenario& scenario, LivePublisher& publisher, const SeedSequence& seeds)
-      : live_(live), scenario_(scenario), publisher_(publisher), goal_rng_(seeds.stream("serve.planner")),
-        plan_rng_(seeds.stream("serve.plan_motion")) {}
+      : live_(live), scenario_(scenario), publisher_(publisher), plan_rng_(seeds.stream("serve.plan_motion")) {}
 
-  runner::RobotCommands commands(double t, const sim::Sandtray& tray, const runner::ReachDisc& reach) override {
-    auto& g = *live_.graph;
+  // ---- the finger poses from the graph (called first at every free-play tick) ----
+  runner::RobotCommands commands(double /*t*/, const sim::Sandtray& tray, const runner::ReachDisc& reach) override {
     runner::RobotCommands out;
-    if (const auto look = g.take_look_at()) out.look_at = Eigen::Vector3d((*look)[0], (*look)[1], (*look)[2]);
-    if (const auto point = g.take_point_at()) out.point_at = Vec2((*point)[0], (*point)[1]);
     publisher_.set_reach(reach);
-    if (!mover_) mover_.emplace(runner::make_move_executor(scenario_, reach.centre, reach.radius), goal_rng_);
-    for (const auto& p : g.take_poses()) out.finger.emplace_back(p.x, p.y);
+    for (const auto& p : live_.graph->take_poses()) out.finger.emplace_back(p.x, p.y);
     tray_ = &tray;
-    out_ = &out;
     stamp_ = live_.stamp(tray.time());
-    if (auto goal = g.take_goal()) start(*goal, t, tray);
-    if (mover_->moving() && g.cancel_requested(goal_id_)) mover_->cancel(t, *this);
-    mover_->step(t, *this);
-    out_ = nullptr;
     return out;
+  }
+
+  // ---- the graph's goals and targets as the robot side's actions ----
+  std::string name() const override { return "external"; }
+  void reset(const policies::PolicyContext& /*context*/, Rng /*rng*/) override {}
+  std::vector<policies::Action> decide(const policies::Observation& /*o*/) override {
+    auto& g = *live_.graph;
+    std::vector<policies::Action> out;
+    if (const auto look = g.take_look_at()) {
+      out.push_back(policies::LookAt{Eigen::Vector3d((*look)[0], (*look)[1], (*look)[2]), std::nullopt});
+    }
+    if (const auto point = g.take_point_at()) out.push_back(policies::PointAt{Vec2((*point)[0], (*point)[1])});
+    if (auto goal = g.take_goal()) {
+      if (const auto why = refusal(*goal, *tray_); !why.empty()) {
+        spdlog::warn("move_sandbox_items: aborted goal {}: {}", goal->id, why);
+        g.goal_done(goal->id, ros_graph::GoalEnd::Aborted, why);
+      } else {
+        waiting_.push_back(goal->id);
+        out.push_back(policies::MoveItem{goal->item, {goal->x, goal->y}});
+      }
+    }
+    if (running_ && waiting_.empty() && g.cancel_requested(*active_)) out.push_back(policies::CancelMove{});
+    return out;
+  }
+
+  /// A move the robot side did not drive (its item not on the tray) ends its goal here; the driver's ends came first.
+  void on_result(const policies::ActionResult& result) override {
+    if (result.kind == policies::ActionResult::Kind::SpeechFinished) return;
+    if (ends_heard_ > 0) {
+      --ends_heard_;
+      return;
+    }
+    if (waiting_.empty()) return;
+    live_.graph->goal_done(waiting_.front(), ros_graph::GoalEnd::Aborted, "not executed: " + result.reason);
+    waiting_.pop_front();
+  }
+
+  // ---- the driver's moves back to the graph: `/poses`, the action's feedback and result ----
+  void move_started(const policies::MoveItem& /*move*/, bool running, double /*t*/) override {
+    active_ = waiting_.front();
+    waiting_.pop_front();
+    running_ = running;
+  }
+  void finger(const planning::TimedPose& pose, double /*t*/) override {
+    live_.graph->finger(stamp_, pose.position.x(), pose.position.y());
+  }
+  void progress(int percentage) override { live_.graph->goal_feedback(*active_, percentage); }
+  void move_ended(const policies::MoveItem& /*move*/, const planning::MoveOutcome& outcome, double /*t*/) override {
+    const auto end = outcome.status == planning::MoveStatus::Succeeded   ? ros_graph::GoalEnd::Succeeded
+                     : outcome.status == planning::MoveStatus::Preempted ? ros_graph::GoalEnd::Preempted
+                                                                         : ros_graph::GoalEnd::Aborted;
+    const bool by_newer = end == ros_graph::GoalEnd::Preempted && !waiting_.empty();
+    const std::string text = by_newer                               ? "preempted by a newer goal"
+                             : end == ros_graph::GoalEnd::Succeeded ? ""
+                                                                    : outcome.reason() + ": " + outcome.message;
+    live_.graph->goal_done(*active_, end, text);
+    active_.reset();
+    running_ = false;
+    ++ends_heard_;
   }
 
   /// Answers the waiting `plan_motion` requests on the game as it is now (map_and_plan serves in every stage).
@@ -207,41 +261,6 @@ class GraphRobot final : public runner::RobotActionSource, private runner::MoveS
                          goal.y, sim::kScreenWidthM, sim::kScreenHeightM);
     }
     return "";
-  }
-
-  void start(const ros_graph::MoveGoal& goal, double t, const sim::Sandtray& tray) {
-    if (const auto why = refusal(goal, tray); !why.empty()) {
-      spdlog::warn("move_sandbox_items: aborted goal {}: {}", goal.id, why);
-      live_.graph->goal_done(goal.id, ros_graph::GoalEnd::Aborted, why);
-      return;
-    }
-    if (mover_->moving()) {
-      preempted_by_newer_ = true;
-      mover_->cancel(t, *this);
-      preempted_by_newer_ = false;
-    }
-    goal_id_ = goal.id;
-    mover_->start({goal.item, {goal.x, goal.y}}, t, *this);
-  }
-
-  // ---- the move's sink: the game's `/poses` (with the graph's), the action's feedback and result ----
-  planning::MoveWorld move_world() override { return runner::sandtray_move_world(*tray_); }
-  void move_started(const policies::MoveItem& /*move*/, bool /*running*/, double /*t*/) override {}
-  void finger(const planning::TimedPose& pose, double /*t*/) override {
-    out_->finger.push_back(pose.position);
-    live_.graph->finger(stamp_, pose.position.x(), pose.position.y());
-  }
-  void progress(int percentage) override { live_.graph->goal_feedback(goal_id_, percentage); }
-  void move_ended(const policies::MoveItem& /*move*/, planning::MoveStatus status, events::MoveResult /*result*/,
-                  double /*t*/) override {
-    const auto& outcome = mover_->outcome();
-    const auto end = status == planning::MoveStatus::Succeeded   ? ros_graph::GoalEnd::Succeeded
-                     : status == planning::MoveStatus::Preempted ? ros_graph::GoalEnd::Preempted
-                                                                 : ros_graph::GoalEnd::Aborted;
-    const std::string text = preempted_by_newer_                    ? "preempted by a newer goal"
-                             : end == ros_graph::GoalEnd::Succeeded ? ""
-                                                                    : outcome.reason() + ": " + outcome.message;
-    live_.graph->goal_done(goal_id_, end, text);
   }
 
   void answer(const ros_graph::PlanRequest& request, const sim::Sandtray& tray, const planning::MoveWorld& world) {
@@ -270,14 +289,13 @@ class GraphRobot final : public runner::RobotActionSource, private runner::MoveS
   Live& live_;
   const scenario::Scenario& scenario_;
   LivePublisher& publisher_;
-  Rng goal_rng_;                           // the goals' planner stream (handed to the move driver)
-  Rng plan_rng_;                           // the `plan_motion` service's planner stream
-  std::optional<runner::MoveDriver> mover_;  // made at the first tick, once the Nao's reach is known
-  std::uint64_t goal_id_ = 0;
-  const sim::Sandtray* tray_ = nullptr;     // the game during commands()
-  runner::RobotCommands* out_ = nullptr;    // this tick's commands during commands()
-  double stamp_ = 0.0;                      // ROS time of this tick
-  bool preempted_by_newer_ = false;
+  Rng plan_rng_;                              // the `plan_motion` service's planner stream
+  std::deque<std::uint64_t> waiting_;         // goals handed to the robot side, not started yet (in order)
+  std::optional<std::uint64_t> active_;       // the goal the driver runs (started, not ended)
+  bool running_ = false;                      // the active goal's move streams poses (a cancel can stop it)
+  int ends_heard_ = 0;                        // driver ends whose ActionResult has not reached on_result yet
+  const sim::Sandtray* tray_ = nullptr;       // the game at the last tick
+  double stamp_ = 0.0;                        // ROS time of the last tick
 };
 
 void serve_plans(GraphRobot& robot, const sim::Sandtray& tray) { robot.serve_plans(tray); }
@@ -336,7 +354,16 @@ runner::FrameSink& GraphSide::cameras() { return impl_->cameras; }
 
 runner::SignalSource& GraphSide::signals() { return *impl_->signals; }
 
-runner::RobotActionSource* GraphSide::robot() { return impl_->robot.get(); }
+runner::EpisodeInputs GraphSide::inputs(const scenario::Scenario& scenario, std::uint64_t seed) {
+  auto* robot = impl_->robot.get();
+  return {.scenario = scenario,
+          .seed = seed,
+          .id = "serve",
+          .decisions = robot,
+          .robot = robot,
+          .moves = robot,
+          .signals = impl_->signals.get()};
+}
 
 runner::EpisodeResult serve(const scenario::Scenario& scenario, std::uint64_t seed, const ServeOptions& options,
                             const std::atomic<bool>& stop, runner::PacingTiming* timing) {
@@ -349,8 +376,7 @@ runner::EpisodeResult serve(const scenario::Scenario& scenario, std::uint64_t se
                                               std::vector<runner::FrameSink*>{&side.cameras()});
     live.attach(*rig);
   }
-  auto result =
-      live.run({.scenario = scenario, .seed = seed, .id = "serve", .robot = side.robot(), .signals = &side.signals()});
+  auto result = live.run(side.inputs(scenario, seed));
   if (timing != nullptr) *timing = live.timing();
   return result;
 }

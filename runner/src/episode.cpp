@@ -36,11 +36,13 @@ class Episode {
     if (inputs.decisions != nullptr) {  // an action source in front of the robot side: what it asks is reported
       inputs.decisions->reset(context, seeds_.stream("policy"));
       robot_.emplace(*inputs.decisions, std::move(executor), seeds_.stream("planner"), BadMove::Report);
-      return;
+    } else {
+      auto policy = policies::make_policy(scenario_.robot.policy, scenario_.robot.params);
+      policy->reset(context, seeds_.stream("policy"));
+      robot_.emplace(std::move(policy), std::move(executor), seeds_.stream("planner"), BadMove::Throw);
     }
-    auto policy = policies::make_policy(scenario_.robot.policy, scenario_.robot.params);
-    policy->reset(context, seeds_.stream("policy"));
-    robot_.emplace(std::move(policy), std::move(executor), seeds_.stream("planner"), BadMove::Throw);
+    robot_->set_move_observer(inputs.moves);
+    robot_side_acts_ = inputs.robot == nullptr || inputs.decisions != nullptr;
   }
 
   EpisodeResult run(const EpisodeInputs& inputs, const EpisodeOutputs& outputs) {
@@ -128,13 +130,11 @@ class Episode {
   }
 
  private:
-  // The robot's tick: its own policy and executor, or the commands of an external robot.
+  // The robot's tick: the finger poses from outside (if any), then the robot side (its policy or the front's
+  // decisions, and the one move driver) unless the poses from outside replace it.
   void step_robot(double t) {
-    if (robot_source_ != nullptr) {
-      world_.apply_external(robot_source_->commands(t, world_.tray(), world_.reach()), t);
-    } else {
-      robot_->step(t, world_.observe(t, robot_->perceives_children()), world_);
-    }
+    if (robot_source_ != nullptr) world_.apply_external(robot_source_->commands(t, world_.tray(), world_.reach()), t);
+    if (robot_side_acts_) robot_->step(t, world_.observe(t, robot_->perceives_children()), world_);
     world_.rest_when_idle(t);
   }
 
@@ -221,7 +221,8 @@ class Episode {
   SeedSequence seeds_;
   detail::SimWorld world_;
   std::optional<RobotSide> robot_;
-  RobotActionSource* robot_source_ = nullptr;  // replaces the robot's policy and executor when set
+  RobotActionSource* robot_source_ = nullptr;  // finger poses from outside, applied first when set
+  bool robot_side_acts_ = true;  // the robot side steps (false: the poses from outside replace it)
   const std::vector<EpisodeObserver*>* observers_ = nullptr;  // null: none (idle stages then take one step)
   SignalSource* signals_ = nullptr;  // signals from outside (a live graph), polled every tick
   int jump_to_ = 0;                  // the latest stage a received signal started

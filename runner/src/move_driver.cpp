@@ -17,6 +17,7 @@ std::optional<policies::ActionResult> MoveDriver::start(const policies::MoveItem
   end_unreported_ = !moving();
   move_ = move;
   sink.move_started(move, moving(), t);
+  if (observer_ != nullptr) observer_->move_started(move, moving(), t);
   return previous;
 }
 
@@ -27,8 +28,11 @@ std::optional<policies::ActionResult> MoveDriver::step(double t, MoveSink& sink)
   }
   if (!moving()) return std::nullopt;
   planning::MoveOutputs outputs;
-  outputs.finger = [&](const planning::TimedPose& pose) { sink.finger(pose, t); };
-  outputs.feedback = [&](int percentage) { sink.progress(percentage); };
+  outputs.finger = [&](const planning::TimedPose& pose) {
+    sink.finger(pose, t);
+    if (observer_ != nullptr) observer_->finger(pose, t);
+  };
+  if (observer_ != nullptr) outputs.feedback = [&](int percentage) { observer_->progress(percentage); };
   outputs.arm = sink.arm();
   executor_->step(kMoveTickS, sink.move_world(), outputs);
   if (moving()) return std::nullopt;
@@ -44,6 +48,7 @@ std::optional<policies::ActionResult> MoveDriver::cancel(double t, MoveSink& sin
 policies::ActionResult MoveDriver::finish(double t, MoveSink& sink) {
   const auto& outcome = executor_->current();
   sink.move_ended(move_, outcome.status, move_result_event(outcome, move_.item), t);
+  if (observer_ != nullptr) observer_->move_ended(move_, outcome, t);
   return move_action_result(outcome, move_.item);
 }
 

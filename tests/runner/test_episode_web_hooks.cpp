@@ -7,6 +7,7 @@
 #include "freeplay/agents/labels.hpp"
 #include "freeplay/runner/episode.hpp"
 #include "freeplay/runner/robot_side.hpp"
+#include "speaker_source.hpp"
 
 using namespace freeplay;
 using namespace freeplay::runner;
@@ -39,22 +40,6 @@ class Keep final : public EpisodeObserver {
 
  private:
   std::vector<Tick>& ticks_;
-};
-
-// An external robot that only speaks, once, at free-play second 2.
-class Speaker final : public RobotActionSource {
- public:
-  RobotCommands commands(double t, const sim::Sandtray& /*tray*/, const ReachDisc& /*reach*/) override {
-    RobotCommands out;
-    if (!said_ && t >= 2.0 - 1e-9) {
-      said_ = true;
-      out.say.push_back({"Shall we build a zoo together?", "purple"});
-    }
-    return out;
-  }
-
- private:
-  bool said_ = false;
 };
 
 }  // namespace
@@ -146,7 +131,7 @@ TEST(EpisodeWebHooks, AnExternalRobotsSpeechIsTheRobotsSayHeardInTheRoom) {
   EpisodeObservers observers;
   observers.push_back(std::make_unique<Keep>(ticks));
   const std::atomic<bool> stop{false};
-  Speaker speaker;
+  test::Speaker speaker("Shall we build a zoo together?", "purple");
   const auto r =
       run_episode({.scenario = s, .seed = 5, .stop = stop, .id = "say", .robot = &speaker}, observed_by(observers));
   const Event* said = nullptr;

@@ -19,7 +19,6 @@ class BallSink final : public MoveSink {
     ++poses;
     ball = pose.position;  // the game drags the item under the finger
   }
-  void progress(int percentage) override { last_progress = percentage; }
   void move_ended(const policies::MoveItem& move, planning::MoveStatus status, events::MoveResult result,
                   double) override {
     calls.push_back("ended " + move.item + " " + std::string(planning::move_status_name(status)));
@@ -29,9 +28,27 @@ class BallSink final : public MoveSink {
   Vec2 ball{0.20, -0.15};
   bool held = false;
   int poses = 0;
-  int last_progress = -1;
   std::vector<std::string> calls;
   events::MoveResult last_result;
+};
+
+/// Hears the driver's moves beside the sink (as a live graph's action server does); records every call in order.
+class Listener final : public MoveObserver {
+ public:
+  void move_started(const policies::MoveItem& move, bool running, double) override {
+    calls.push_back("started " + move.item + (running ? " running" : " refused"));
+  }
+  void finger(const planning::TimedPose& /*pose*/, double) override { ++poses; }
+  void progress(int percentage) override { last_progress = percentage; }
+  void move_ended(const policies::MoveItem& move, const planning::MoveOutcome& outcome, double) override {
+    calls.push_back("ended " + move.item + " " + std::string(planning::move_status_name(outcome.status)));
+    last_message = outcome.message;
+  }
+
+  int poses = 0;
+  int last_progress = -1;
+  std::vector<std::string> calls;
+  std::string last_message;
 };
 
 MoveDriver make_driver(bool check_child_holding = false) {
@@ -61,7 +78,6 @@ TEST(MoveDriver, AMoveStreamsItsPosesThroughTheSinkAndEndsOnce) {
   EXPECT_EQ(ended->item, "ball");
   EXPECT_EQ(sink.calls, (std::vector<std::string>{"started ball running", "ended ball succeeded"}));
   EXPECT_EQ(sink.poses, driver.outcome().poses_sent);
-  EXPECT_GT(sink.last_progress, 50);
   EXPECT_NEAR(sink.ball.x(), 0.40, 1e-6);
   EXPECT_EQ(sink.last_result.status, "succeeded");
   EXPECT_EQ(sink.last_result.poses, static_cast<std::size_t>(sink.poses));
@@ -99,6 +115,29 @@ TEST(MoveDriver, ANewMovePreemptsTheRunningOneAndCancelStopsIt) {
   EXPECT_FALSE(driver.cancel(0.6, sink).has_value());  // nothing runs any more
   EXPECT_EQ(sink.calls, (std::vector<std::string>{"started ball running", "ended ball preempted",
                                                   "started ball running", "ended ball preempted"}));
+}
+
+TEST(MoveDriver, AnObserverHearsEveryMoveAsTheSinkDoesWithItsFeedback) {
+  auto driver = make_driver(true);
+  BallSink sink;
+  Listener listener;
+  driver.set_observer(&listener);
+  driver.start({"ball", {0.40, -0.15}}, 0.0, sink);
+  ASSERT_TRUE(run(driver, sink, 200).has_value());
+  sink.held = true;  // a child holds the ball: refused, ended at the next step
+  driver.start({"ball", {0.20, -0.15}}, 30.0, sink);
+  ASSERT_TRUE(driver.step(30.1, sink).has_value());
+  EXPECT_EQ(listener.calls, sink.calls);
+  EXPECT_EQ(listener.calls, (std::vector<std::string>{"started ball running", "ended ball succeeded",
+                                                      "started ball refused", "ended ball aborted"}));
+  EXPECT_EQ(listener.poses, sink.poses);
+  EXPECT_GT(listener.last_progress, 50);  // the action's feedback: percent of the poses sent
+  EXPECT_EQ(listener.last_message, driver.outcome().message);
+  driver.set_observer(nullptr);  // a driver without an observer still runs its moves
+  sink.held = false;
+  driver.start({"ball", {0.25, -0.15}}, 40.0, sink);
+  ASSERT_TRUE(run(driver, sink, 200).has_value());
+  EXPECT_EQ(listener.calls.size(), 4u);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "freeplay/recording/record_settings.hpp"
+#include "freeplay/recording/session_layout.hpp"
 #include "freeplay/recording/tick_topics.hpp"
 #include "freeplay/runner/episode.hpp"
 #include "freeplay/runner/episode_observer.hpp"
@@ -15,30 +16,6 @@
 #include "freeplay/scenario/scenario.hpp"
 
 namespace freeplay::recording {
-
-/// Files of one recorded session (`<run>/sessions/<episode id>/`).
-struct SessionPaths {
-  std::filesystem::path dir;          ///< the session folder
-  std::filesystem::path bag;          ///< `freeplay.bag` (complete recordings)
-  std::filesystem::path active_bag;   ///< `freeplay.bag.active` while recording (left behind by a kill)
-  std::filesystem::path experiment;   ///< `experiment.yaml` (PInSoRo metadata)
-  std::filesystem::path annotations;  ///< `freeplay.annotations.freeplay-sim.yaml` (ground truth, bag time base)
-  std::filesystem::path bag_yaml;     ///< `freeplay.bag.yaml` (rosbag info --yaml of the closed bag)
-};
-/// The files of the session folder `dir`.
-inline SessionPaths session_paths(const std::filesystem::path& dir) {
-  return {dir, dir / "freeplay.bag", dir / "freeplay.bag.active", dir / "experiment.yaml",
-          dir / "freeplay.annotations.freeplay-sim.yaml", dir / "freeplay.bag.yaml"};
-}
-
-/// The recorder's own topics (the tick's real topics are in tick_topics.hpp; the camera topics in camera_topics()).
-namespace topics {
-inline constexpr const char* kAllSpeech = "/freeplay/speech";                       ///< String: JSON, everyone's
-inline constexpr const char* kEvents = "/freeplay/events";                          ///< String: JSON, the event log
-inline constexpr const char* kAnnotations = "/freeplay/annotations";                ///< String: PInSoRo YAML
-inline constexpr const char* kScenario = "/freeplay/scenario";  ///< String, latched: the validated scenario YAML
-inline constexpr const char* kEpisode = "/freeplay/episode";    ///< String, latched: JSON {id, seed, scenario}
-}  // namespace topics
 
 /// Counts of what a recorder wrote.
 struct RecordingStats {

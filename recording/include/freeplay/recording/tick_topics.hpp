@@ -13,27 +13,11 @@
 
 #include "freeplay/recording/publishers.hpp"
 #include "freeplay/recording/ros_messages.hpp"
+#include "freeplay/recording/session_layout.hpp"
 #include "freeplay/runner/episode_observer.hpp"
 #include "freeplay/runner/robot_body.hpp"
 
 namespace freeplay::recording {
-
-/// The real topics of the tick (the recorder's own topics are in bag_recorder.hpp).
-namespace topics {
-inline constexpr const char* kTf = "/tf";                                           ///< tf2_msgs/TFMessage
-inline constexpr const char* kFootprints = "/footprints";                           ///< MarkerArray, latched
-inline constexpr const char* kZones = "/zones";                                     ///< MarkerArray, latched
-inline constexpr const char* kBackground = "/sandtray/background/image/compressed";  ///< CompressedImage (PNG), latched
-inline constexpr const char* kBackgroundRaw = "/sandtray/background/image";          ///< sensor_msgs/Image rgba8, latched
-inline constexpr const char* kBackgroundInfo = "/sandtray/background/camera_info";   ///< CameraInfo, latched
-inline constexpr const char* kPoses = "/poses";                                     ///< PoseStamped
-inline constexpr const char* kTrajectory = "/visualization_markers";                ///< Marker: the move's trajectory
-inline constexpr const char* kJointStates = "/joint_states";                        ///< sensor_msgs/JointState
-inline constexpr const char* kMap = "/map";                                         ///< nav_msgs/OccupancyGrid
-inline constexpr const char* kInteractionEvents = "/sandtray/interaction_events";   ///< std_msgs/String
-inline constexpr const char* kSpeech = "/speech";                                   ///< String: the robot's TTS text
-inline constexpr const char* kSignalsPrefix = "/sandtray/signals/";                 ///< std_msgs/Empty, + the name
-}  // namespace topics
 
 /// The streams of the tick, one per real publisher group; a front carries a set of them (bit flags).
 enum TickStream : unsigned {

@@ -39,8 +39,10 @@ class GraphSide {
   runner::FrameSink& cameras();
   /// The signals received from the graph since the last call.
   runner::SignalSource& signals();
-  /// The external robot (`external_robot` in a child-robot scenario), or null.
-  runner::RobotActionSource* robot();
+  /// The inputs of the served episode of `scenario` (not copied) from `seed`: the graph's signals and, with
+  /// `external_robot` in a child-robot scenario, the graph's robot: its `/poses`, its goals, gaze and pointing targets
+  /// in front of the episode's one robot side, and the move driver's feedback and result back to the graph.
+  runner::EpisodeInputs inputs(const scenario::Scenario& scenario, std::uint64_t seed);
 
  private:
   struct Impl;

@@ -19,6 +19,7 @@
 #include "freeplay/policies/play_policy.hpp"
 #include "freeplay/runner/child_action_source.hpp"
 #include "freeplay/runner/episode_observer.hpp"
+#include "freeplay/runner/move_driver.hpp"
 #include "freeplay/runner/robot_action_source.hpp"
 #include "freeplay/runner/robot_body.hpp"
 #include "freeplay/scenario/scenario.hpp"
@@ -67,10 +68,15 @@ struct EpisodeInputs {
   /// The children's free-play actions instead of the synthetic agents' (which then leave no annotations), or null.
   ChildActionSource* children = nullptr;
   /// Child-robot scenarios: what decides for the robot instead of the scenario's policy, in front of the one robot
-  /// side (the web page's wizard and SPARC modes); reset by the episode, not owned; or null.
+  /// side (the web page's wizard and SPARC modes, `freeplay serve --robot external`'s goals); reset by the episode,
+  /// not owned; or null.
   policies::PlayPolicy* decisions = nullptr;
-  /// Child-robot scenarios: the robot's finger poses from outside instead of its robot side's, or null.
+  /// Child-robot scenarios: the robot's finger poses from outside (a live graph's `/poses`), or null. Without
+  /// `decisions` they replace the robot side; with them, both act (the poses first, at every free-play tick).
   RobotActionSource* robot = nullptr;
+  /// Child-robot scenarios: hears every move of the robot side's driver besides the world (a live graph's
+  /// move_sandbox_items server: its feedback, result and `/poses`); not owned; or null.
+  MoveObserver* moves = nullptr;
   /// Signals received from outside, applied at every tick: `start_tutorial`, `start_freeplay` and (in free play)
   /// `blank_interface` end the stages before the one they start (free play then ends "by signal"); every other
   /// signal goes to the game as it is. Null: none.
@@ -90,6 +96,7 @@ struct EpisodeInputs {
             .children = children,
             .decisions = decisions,
             .robot = robot,
+            .moves = moves,
             .signals = signals};
   }
 };

@@ -2,8 +2,10 @@
 // The one way the robot moves an item, for every front: plan the drag, stream it through the move_sandbox_items
 // executor as 10 Hz finger poses (the game's `/poses` fake touches, which the Nao's arm follows) and report how the
 // move ended. The in-process episode (RobotSide), `freeplay serve --robot external`, the web page's wizard and SPARC
-// modes (action sources in front of RobotSide), controller scenarios and `freeplay plan` all drive their moves here;
-// only the MoveSink differs (where the poses go and who hears of the move).
+// modes and `freeplay serve --robot external` (action sources in front of RobotSide), controller scenarios and
+// `freeplay plan` all drive their moves here; only the MoveSink differs (where the poses go and who hears of the
+// move). A MoveObserver hears the same moves besides the sink (a live graph's move_sandbox_items server: its
+// feedback, its result and the `/poses` it streams).
 
 #include <memory>
 #include <optional>
@@ -31,11 +33,23 @@ class MoveSink {
   virtual void move_started(const policies::MoveItem& move, bool running, double t) = 0;
   /// One finger pose of the running move (a `/poses` fake touch).
   virtual void finger(const planning::TimedPose& pose, double t) = 0;
-  /// The running move's progress (the action's feedback, percent of its poses sent).
-  virtual void progress(int percentage) { (void)percentage; }
   /// A move ended with `status`; `result` is its event (status, reason, measurements).
   virtual void move_ended(const policies::MoveItem& move, planning::MoveStatus status, events::MoveResult result,
                           double t) = 0;
+};
+
+/// Hears a driver's moves besides its sink, in the order the sink does (a live graph's action server).
+class MoveObserver {
+ public:
+  virtual ~MoveObserver() = default;
+  /// A move was started (`running` false: the executor refused or could not plan it; its end follows).
+  virtual void move_started(const policies::MoveItem& move, bool running, double t) = 0;
+  /// One finger pose of the running move, after the sink had it.
+  virtual void finger(const planning::TimedPose& pose, double t) = 0;
+  /// The running move's progress (percent of its poses sent).
+  virtual void progress(int percentage) = 0;
+  /// A move ended with `outcome` (status, reason, message, measurements), after the sink heard of it.
+  virtual void move_ended(const policies::MoveItem& move, const planning::MoveOutcome& outcome, double t) = 0;
 };
 
 /// Drives one robot's moves through one move executor and one planner stream (one instance per robot).
@@ -43,6 +57,9 @@ class MoveDriver {
  public:
   /// Takes the executor (its planner and settings) and the planner's random stream.
   MoveDriver(std::unique_ptr<planning::MoveExecutor> executor, Rng planner_rng);
+
+  /// Lets `observer` (not owned; null: none) hear every later move besides the sink.
+  void set_observer(MoveObserver* observer) { observer_ = observer; }
 
   /// Plans `move` on the sink's world and starts streaming it; a running move is pre-empted first (its end is
   /// reported and returned). A move that could not start ends at the next `step`.
@@ -67,6 +84,7 @@ class MoveDriver {
 
   std::unique_ptr<planning::MoveExecutor> executor_;
   Rng planner_rng_;
+  MoveObserver* observer_ = nullptr;
   policies::MoveItem move_;
   bool end_unreported_ = false;  // the move ended in start(), reported at the next step
 };

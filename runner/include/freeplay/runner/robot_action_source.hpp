@@ -1,8 +1,9 @@
 #pragma once
-// An optional replacement for the robot's policy and move executor in a child-robot episode: something outside the
-// episode (a live ROS graph: `freeplay serve --robot external`) moves the robot's virtual finger, and the episode
-// applies each pose as the game applies `/poses` (the Nao follows it, as nao_behaviours), and turns the Nao's head
-// and arm to the gaze and pointing targets it sends.
+// The robot's finger poses from outside a child-robot episode: something outside the episode (a live ROS graph's
+// `/poses` under `freeplay serve --robot external`) moves the robot's virtual finger, and the episode applies each
+// pose as the game applies `/poses` (the Nao follows it, as nao_behaviours), and turns the Nao's head and arm to the
+// gaze and pointing targets it sends. Alone it replaces the robot side; beside an action source in front of the robot
+// side (EpisodeInputs::decisions) both act, the poses first.
 
 #include <Eigen/Core>
 #include <optional>
@@ -32,7 +33,7 @@ struct RobotCommands {
   std::vector<RobotUtterance> say;            ///< utterances started this tick (as a policy's `say`: heard, logged)
 };
 
-/// Supplies the robot's actions of an episode instead of its policy and move executor.
+/// Supplies the robot's finger poses (and, alone, its gaze, pointing and speech) from outside the episode.
 class RobotActionSource {
  public:
   virtual ~RobotActionSource() = default;

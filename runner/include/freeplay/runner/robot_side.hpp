@@ -72,6 +72,8 @@ class RobotSide {
   /// One 10 Hz decision tick at `t` (s since free play started): completes `o.self` with the move state, lets the
   /// policy decide, acts through `world`, streams the running move's poses and reports ended actions.
   void step(double t, policies::Observation& o, RobotWorld& world);
+  /// Lets `observer` (not owned; null: none) hear every move of its driver besides the world (MoveDriver).
+  void set_move_observer(MoveObserver* observer) { mover_.set_observer(observer); }
   /// True when the policy uses perceived children (the world may skip perceiving them otherwise).
   bool perceives_children() const { return policy_->perceives_children(); }
   /// The policy's registered name.
