@@ -4,6 +4,7 @@
 
 #include "freeplay/core/assets.hpp"
 #include "freeplay/policies/play_policy.hpp"
+#include "freeplay/recording/record_settings.hpp"
 
 namespace freeplay::cli {
 
@@ -12,7 +13,7 @@ scenario::ScenarioVocabulary scenario_vocabulary() {
   v.policies = policies::policy_names();
   for (auto& pattern : policies::policy_name_patterns()) v.policies.push_back(std::move(pattern));  // python:*
 #ifndef FREEPLAY_WITH_ESPEAK
-  v.voices = {"babble"};  // built without the optional espeak-ng voice (voice_espeak/, docs/recording.md)
+  v.voices = {std::string(recording::kVoiceNames[0])};  // babble only: built without the optional espeak-ng voice (voice_espeak/, docs/recording.md)
 #endif
   return v;
 }

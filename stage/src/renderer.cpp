@@ -154,12 +154,12 @@ class EglContext final : public GlContext {
 }  // namespace
 
 GlBackend gl_backend_from_name(std::string_view name) {
-  if (name == "osmesa") return GlBackend::osmesa;
-  if (name == "egl") return GlBackend::egl;
+  GlBackend backend{};
+  if (from_string(name, backend)) return backend;
   throw InputError("unknown GL backend '" + std::string(name) + "'", "gl", "osmesa, egl");
 }
 
-std::string_view gl_backend_name(GlBackend backend) { return backend == GlBackend::osmesa ? "osmesa" : "egl"; }
+std::string_view gl_backend_name(GlBackend backend) { return to_string(backend); }
 
 GlBackend default_gl_backend() {
   const char* env = std::getenv("MUJOCO_GL");
@@ -168,12 +168,12 @@ GlBackend default_gl_backend() {
 }
 
 VisualPreset visual_preset_from_name(std::string_view name) {
-  if (name == "fast") return VisualPreset::fast;
-  if (name == "pretty") return VisualPreset::pretty;
+  VisualPreset preset{};
+  if (from_string(name, preset)) return preset;
   throw InputError("unknown visual preset '" + std::string(name) + "'", "preset", "fast, pretty");
 }
 
-std::string_view visual_preset_name(VisualPreset preset) { return preset == VisualPreset::fast ? "fast" : "pretty"; }
+std::string_view visual_preset_name(VisualPreset preset) { return to_string(preset); }
 
 double depth_buffer_to_metres(float buffer_value, double near_m, double far_m) {
   return near_m / (1.0 - static_cast<double>(buffer_value) * (1.0 - near_m / far_m));

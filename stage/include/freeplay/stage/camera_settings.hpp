@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "freeplay/core/settings_archive.hpp"
+#include "freeplay/stage/render_names.hpp"
 
 namespace freeplay::stage {
 
@@ -37,7 +38,7 @@ struct CameraStream {
 /// `rendering:` how the cameras are rendered (the renderer's options: renderer.hpp).
 struct RenderingSettings {
   std::string backend;          ///< "osmesa" | "egl"; empty: $MUJOCO_GL, else osmesa
-  std::string preset = "fast";  ///< "fast" | "pretty"
+  std::string preset{to_string(kDefaultVisualPreset)};  ///< "fast" | "pretty"
 
   /// Same settings.
   bool operator==(const RenderingSettings&) const = default;
@@ -45,8 +46,8 @@ struct RenderingSettings {
   /// The keys of `rendering:`.
   template <typename Archive>
   void visit(Archive& a) {
-    a.optional("backend", backend, Schema::enumeration({"osmesa", "egl"}), "GL provider; default $MUJOCO_GL, else osmesa");
-    a.field("preset", preset, Schema::enumeration({"fast", "pretty"}),
+    a.optional("backend", backend, Schema::enumeration(enum_names({GlBackend::osmesa, GlBackend::egl})), "GL provider; default $MUJOCO_GL, else osmesa");
+    a.field("preset", preset, Schema::enumeration(enum_names({VisualPreset::fast, VisualPreset::pretty})),
             "fast: no MSAA/shadows/reflections/skybox; pretty: 4x MSAA, shadows, skybox");
   }
 };

@@ -8,13 +8,12 @@
 #include <string>
 #include <string_view>
 
+#include "freeplay/stage/render_names.hpp"
 #include "freeplay/stage/stage.hpp"
 #include "freeplay/stage/stage_model.hpp"
 
 namespace freeplay::stage {
 
-/// Which OpenGL provider renders: Mesa's OSMesa (CPU, no display) or EGL (GPU, or Mesa's surfaceless llvmpipe).
-enum class GlBackend { osmesa, egl };
 /// Parses "osmesa" / "egl"; throws InputError naming the allowed values.
 GlBackend gl_backend_from_name(std::string_view name);
 /// "osmesa" or "egl".
@@ -22,8 +21,6 @@ std::string_view gl_backend_name(GlBackend backend);
 /// The backend named by $MUJOCO_GL ("osmesa" or "egl"), OSMesa when it is unset.
 GlBackend default_gl_backend();
 
-/// Visual quality: `fast` (no MSAA, shadows, reflections or skybox) or `pretty` (4× MSAA, shadows, skybox).
-enum class VisualPreset { fast, pretty };
 /// Parses "fast" / "pretty"; throws InputError naming the allowed values.
 VisualPreset visual_preset_from_name(std::string_view name);
 /// "fast" or "pretty".
@@ -32,7 +29,7 @@ std::string_view visual_preset_name(VisualPreset preset);
 /// Renderer settings.
 struct RendererOptions {
   GlBackend backend = GlBackend::osmesa;     ///< GL provider
-  VisualPreset preset = VisualPreset::fast;  ///< quality
+  VisualPreset preset = kDefaultVisualPreset;  ///< quality
   int max_width = 1280;                      ///< largest image this renderer can produce (px)
   int max_height = 960;                      ///< largest image this renderer can produce (px)
 };
