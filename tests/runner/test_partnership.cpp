@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <optional>
 
 #include "freeplay/core/atomic_file.hpp"
 #include "freeplay/core/error.hpp"
@@ -92,6 +93,40 @@ TEST(EventCoding, ARecordedEventLogIsCodedAsTheLiveEpisodeWas) {
         << condition << "\nlive:\n" << agents::to_pinsoro_yaml({*episode.annotations.purple, {}})
         << "log:\n" << agents::to_pinsoro_yaml({*coded.purple, {}});
   }
+}
+
+// A robot move's result from an older log (without today's fields) is read as events::Other: the coder must still
+// see the robot's finger leave the screen, so the child beside it is coded as in a log with today's result.
+TEST(EventCoding, AnOlderLogsMoveResultStillLiftsTheRobotsFinger) {
+  using nlohmann::json;
+  events::MoveResult today;
+  today.item = "zebra";
+  today.status = "succeeded";
+  const json older = {{"item", "zebra"}, {"status", "succeeded"}};
+  // The child keeps drawing for five minutes; the robot moves one item at the start.
+  const auto log = [](const std::optional<events::EventPayload>& result) {
+    std::vector<Event> events;
+    events.emplace_back(0.0, "protocol", "stage", json{{"stage", "freeplay"}});
+    events.emplace_back(1.0, "child.purple", "touch_down", json{{"finger", 1}, {"outcome", "stroke"}, {"x", 0.3}, {"y", -0.5}});
+    events.emplace_back(10.0, "robot", "move_goal", json{{"item", "zebra"}, {"x", 0.5}, {"y", -0.1}});
+    if (result) events.emplace_back(12.0, "robot", *result);
+    events.emplace_back(299.0, "child.purple", "touch_up", json{{"finger", 1}});
+    events.emplace_back(300.0, "protocol", "stage", json{{"stage", "debriefing"}});
+    return events;
+  };
+  const auto& coder = SharedModels::shipped().child_params->coder;
+  const auto with_today = log(today);
+  const auto with_older = log(events::payload_of("move_result", older));
+  ASSERT_NE(with_today[3].get<events::MoveResult>(), nullptr);
+  ASSERT_NE(with_older[3].get<events::Other>(), nullptr);  // the older result is not read as a typed MoveResult
+  const auto coded_today = code_event_log(with_today, coder);
+  const auto coded_older = code_event_log(with_older, coder);
+  const auto coded_never_lifted = code_event_log(log(std::nullopt), coder);
+  ASSERT_TRUE(coded_today.purple && coded_older.purple && coded_never_lifted.purple);
+  const auto social = agents::Axis::SocialEngagement;
+  EXPECT_DOUBLE_EQ(agents::timeline_agreement(*coded_older.purple, *coded_today.purple, social, 300.0), 1.0);
+  // The check can fail: a finger that never leaves keeps the robot playing beside the child all session.
+  EXPECT_LT(agents::timeline_agreement(*coded_never_lifted.purple, *coded_today.purple, social, 300.0), 0.9);
 }
 
 TEST(EventCoding, MalformedLogsAreInputErrorsNamingTheLine) {
