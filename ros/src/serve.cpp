@@ -217,6 +217,7 @@ class GraphRobot final : public runner::RobotActionSource, public policies::Play
 
   // ---- the driver's moves back to the graph: `/poses`, the action's feedback and result ----
   void move_started(const policies::MoveItem& /*move*/, bool running, double /*t*/) override {
+    if (waiting_.empty()) return;  // every move here comes from a graph goal; nothing to report otherwise
     active_ = waiting_.front();
     waiting_.pop_front();
     running_ = running;
@@ -224,7 +225,9 @@ class GraphRobot final : public runner::RobotActionSource, public policies::Play
   void finger(const planning::TimedPose& pose, double /*t*/) override {
     live_.graph->finger(stamp_, pose.position.x(), pose.position.y());
   }
-  void progress(int percentage) override { live_.graph->goal_feedback(*active_, percentage); }
+  void progress(int percentage) override {
+    if (active_) live_.graph->goal_feedback(*active_, percentage);
+  }
   void move_ended(const policies::MoveItem& /*move*/, const planning::MoveOutcome& outcome, double /*t*/) override {
     const auto end = outcome.status == planning::MoveStatus::Succeeded   ? ros_graph::GoalEnd::Succeeded
                      : outcome.status == planning::MoveStatus::Preempted ? ros_graph::GoalEnd::Preempted
@@ -233,7 +236,7 @@ class GraphRobot final : public runner::RobotActionSource, public policies::Play
     const std::string text = by_newer                               ? "preempted by a newer goal"
                              : end == ros_graph::GoalEnd::Succeeded ? ""
                                                                     : outcome.reason() + ": " + outcome.message;
-    live_.graph->goal_done(*active_, end, text);
+    if (active_) live_.graph->goal_done(*active_, end, text);
     active_.reset();
     running_ = false;
     ++ends_heard_;

@@ -1,11 +1,11 @@
 #pragma once
 // The one way the robot moves an item, for every front: plan the drag, stream it through the move_sandbox_items
 // executor as 10 Hz finger poses (the game's `/poses` fake touches, which the Nao's arm follows) and report how the
-// move ended. The in-process episode (RobotSide), `freeplay serve --robot external`, the web page's wizard and SPARC
-// modes and `freeplay serve --robot external` (action sources in front of RobotSide), controller scenarios and
-// `freeplay plan` all drive their moves here; only the MoveSink differs (where the poses go and who hears of the
-// move). A MoveObserver hears the same moves besides the sink (a live graph's move_sandbox_items server: its
-// feedback, its result and the `/poses` it streams).
+// move ended. The in-process episode (RobotSide), the web page's wizard and SPARC modes and `freeplay serve --robot
+// external` (action sources in front of RobotSide), controller scenarios and `freeplay plan` all drive their moves
+// here; only the MoveSink differs (where the poses go and who hears of the move). A MoveObserver hears the same
+// moves besides the sink (a live graph's move_sandbox_items server: its feedback, its result and the `/poses` it
+// streams).
 
 #include <memory>
 #include <optional>
