@@ -173,9 +173,9 @@ void ChildModelParams::visit(Archive& a) {
   double version = 1;  // the file format; only 1 exists
   a.required("version", version, Schema::number(1, 1));
   a.required("session_cap_s", session_cap_s, Schema::number(1.0, 86400.0));
-  a.section("axes", [this](auto& axes_archive) {
+  a.section("axes", [this](auto& all_axes) {
     for (const Axis x : kAxes) {
-      axes_archive.section(std::string(axis_name(x)), [this, x](auto& axis_archive) { axis(x).visit(axis_archive, x); });
+      all_axes.section(std::string(axis_name(x)), [this, x](auto& one_axis) { axis(x).visit(one_axis, x); });
     }
   });
   a.required("drives", drives, settings_schema<DriveParams>());
