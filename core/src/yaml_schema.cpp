@@ -299,6 +299,16 @@ Field optional(std::string key, std::shared_ptr<const Schema> schema, std::strin
   return Field{std::move(key), std::move(schema), false, std::nullopt, std::move(help)};
 }
 
+std::shared_ptr<const Schema> named_map(const std::vector<std::string>& names, std::shared_ptr<const Schema> value,
+                                        KeyCoverage coverage) {
+  std::vector<Field> fields;
+  fields.reserve(names.size());
+  for (const auto& name : names) {
+    fields.push_back(coverage == KeyCoverage::All ? required(name, value) : optional(name, value));
+  }
+  return Schema::map(std::move(fields));
+}
+
 namespace {
 
 std::vector<std::string> split_key_path(const std::string& key_path) {

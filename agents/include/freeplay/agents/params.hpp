@@ -1,5 +1,7 @@
 #pragma once
-// The child model's parameters (immutable, loaded and validated from assets/agents/child-model.yaml).
+// The child model's parameters (immutable, loaded and validated from assets/agents/child-model.yaml). Each struct's
+// `visit` lists its keys and ranges once (core/settings_archive.hpp); the lists are defined in agents/src/params.cpp,
+// the one place that reads and writes the YAML, so this header stays free of YAML.
 
 #include <array>
 #include <cstddef>
@@ -38,6 +40,12 @@ struct AxisModel {
   std::array<std::array<double, kMaxLabels>, kMaxLabels> transition{};  ///< base weight row → column (diag unused)
   std::array<double, kMaxLabels> bias{};            ///< fitted log-weight offset of entering each label
   std::array<std::array<double, kFeatureCount>, kMaxLabels> coupling{};  ///< log-weight per label and feature
+
+  /// The keys of `axes.<axis>:` with their ranges, a value per label of `axis` (params.cpp).
+  template <typename Archive>
+  void visit(Archive& a, Axis axis);
+  /// Equal when every parameter is.
+  bool operator==(const AxisModel&) const = default;
 };
 
 /// Slow latent drives and the quit hazard they set.
@@ -60,6 +68,12 @@ struct DriveParams {
   double partner_quit_factor = 20.0;      ///< hazard multiplier once the partner has announced it wants to stop
   double grievance_tau_s = 60.0;          ///< decay time of the grievance memory (s)
   double attention_tau_s = 30.0;          ///< averaging time of the partner-behaviour features (s)
+
+  /// The keys of `drives:` with their ranges (params.cpp).
+  template <typename Archive>
+  void visit(Archive& a);
+  /// Equal when every parameter is.
+  bool operator==(const DriveParams&) const = default;
 };
 
 /// Reactions to what the partner does.
@@ -76,6 +90,12 @@ struct ReactionParams {
   double look_weight = 0.4;                ///< contingency weight of the partner looking at me
   double talk_weight = 0.7;                ///< contingency weight of the partner talking to me
   double act_weight = 1.0;                 ///< contingency weight of the partner acting on my play
+
+  /// The keys of `reactions:` with their ranges (params.cpp).
+  template <typename Archive>
+  void visit(Archive& a);
+  /// Equal when every parameter is.
+  bool operator==(const ReactionParams&) const = default;
 };
 
 /// Touch kinematics and action pacing.
@@ -91,6 +111,12 @@ struct MotorParams {
   std::array<double, 4> action_gap_median_s{3.0, 2.5, 12.0, 0.0};  ///< median pause between actions per task label (0 = none)
   double action_gap_sigma = 0.8;       ///< log-normal σ of the pause
   double stroke_duration_s = 2.0;      ///< median duration of a drawing stroke (s)
+
+  /// The keys of `motor:` with their ranges (params.cpp).
+  template <typename Archive>
+  void visit(Archive& a);
+  /// Equal when every parameter is.
+  bool operator==(const MotorParams&) const = default;
 };
 
 /// Gaze and speech behaviour.
@@ -105,6 +131,12 @@ struct ExpressionParams {
   double articulation_rate_at_3 = 2.7;              ///< syllables/s at 3 years
   double articulation_rate_per_year = 0.12;         ///< increase per year (3.3 at 8 years)
   std::array<double, 5> proposal_share{0.3, 0.3, 0.7, 0.1, 0.1};  ///< share of proposals among utterances to the partner, per own social attitude
+
+  /// The keys of `expression:` with their ranges (params.cpp).
+  template <typename Archive>
+  void visit(Archive& a);
+  /// Equal when every parameter is.
+  bool operator==(const ExpressionParams&) const = default;
 };
 
 /// How the personality traits of a sampled child are distributed (normal, clamped to [0, 1]).
@@ -116,6 +148,12 @@ struct TraitParams {
   double attention_mean = 0.5;          ///< mean attention span at 6 years
   double attention_sd = 0.2;            ///< spread of attention span
   double attention_per_year = 0.06;     ///< attention span gained per year of age
+
+  /// The keys of `traits:` with their ranges (params.cpp).
+  template <typename Archive>
+  void visit(Archive& a);
+  /// Equal when every parameter is.
+  bool operator==(const TraitParams&) const = default;
 };
 
 /// Reciprocity: how a child answers its partner's bids and how joint play depends on being answered.
@@ -132,6 +170,12 @@ struct PartnershipParams {
   double expectation_exponent = 2.0;    ///< joint-play transition weights × expectation^exponent
   double bid_floor = 0.2;               ///< bid rates × (floor + (1 − floor) × expectation)
   double watch_window_s = 4.0;          ///< onlooking ends when the partner has not acted for this long (s)
+
+  /// The keys of `partnership:` with their ranges (params.cpp).
+  template <typename Archive>
+  void visit(Archive& a);
+  /// Equal when every parameter is.
+  bool operator==(const PartnershipParams&) const = default;
 };
 
 /// The coder (annotator): how observable behaviour becomes social-engagement labels (docs/agents.md).
@@ -157,6 +201,12 @@ struct CoderParams {
   double adversarial_hold_s = 6.0;   ///< taking the other's item shows an adversarial attitude this long (s)
   double frustrated_hold_s = 3.0; ///< a protest shows frustration this long (s)
   double assertive_hold_s = 6.0;  ///< a proposal or request to the other (directing its play) shows assertiveness this long (s)
+
+  /// The keys of `coder:` with their ranges (params.cpp).
+  template <typename Archive>
+  void visit(Archive& a);
+  /// Equal when every parameter is.
+  bool operator==(const CoderParams&) const = default;
 };
 
 /// Every parameter of the child model (immutable once loaded).
@@ -175,6 +225,12 @@ struct ChildModelParams {
   const AxisModel& axis(Axis a) const { return axes[static_cast<std::size_t>(a)]; }
   /// Mutable axis model of `axis` (used by the fitting procedure).
   AxisModel& axis(Axis a) { return axes[static_cast<std::size_t>(a)]; }
+
+  /// The keys of the whole file (params.cpp).
+  template <typename Archive>
+  void visit(Archive& a);
+  /// Equal when every parameter is.
+  bool operator==(const ChildModelParams&) const = default;
 };
 
 /// Parses and validates parameters from YAML text; `file` names the source in errors (InputError file:line:col).

@@ -6,10 +6,16 @@
 // struct from a node the schema validated (`read_unvalidated_settings<T>(node, path)` validates it first). An enum
 // member is written with `to_string(value)` and read with `from_string(text, value)`, the one name/value pair its
 // library declares next to it (found by argument-dependent lookup); `enum_names` lists the names its schema allows.
+// A std::array member given a `named_map` schema is a value per name (element i under key names[i]; a name a
+// `KeyCoverage::Some` map leaves out reads as zero). `a.section(key, visit_keys)` declares a required sub-map whose
+// keys a lambda lists (for keys that need context, such as a loop over names). `write_settings<T>(settings)` writes
+// a struct back as YAML through the same list (WriteArchive), so each key is named once in the code.
 
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
+#include <array>
+#include <concepts>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -45,6 +51,13 @@ struct IsOptional : std::false_type {};
 template <typename T>
 struct IsOptional<std::optional<T>> : std::true_type {};
 
+/// True for std::array members (read and written as a value per name of their `named_map` schema).
+template <typename T>
+struct IsStdArray : std::false_type {};
+/// True for std::array members (read and written as a value per name of their `named_map` schema).
+template <typename T, std::size_t N>
+struct IsStdArray<std::array<T, N>> : std::true_type {};
+
 /// Collects the schema fields of a settings struct, with the defaults of a default-constructed instance.
 class SchemaArchive {
  public:
@@ -62,6 +75,13 @@ class SchemaArchive {
   template <typename T>
   void optional(const char* key, const T&, std::shared_ptr<const Schema> schema, std::string help = {}) {
     fields_.push_back(freeplay::optional(key, std::move(schema), std::move(help)));
+  }
+  /// A required sub-map whose keys `visit_keys(archive)` declares on the archive it is given.
+  template <typename VisitKeys>
+  void section(const std::string& key, VisitKeys&& visit_keys, std::string help = {}) {
+    SchemaArchive nested;
+    visit_keys(nested);
+    fields_.push_back(freeplay::required(key, Schema::map(nested.take()), std::move(help)));
   }
   /// The collected fields, in declaration order.
   std::vector<Field> take() { return std::move(fields_); }
@@ -85,24 +105,30 @@ class ReadArchive {
   explicit ReadArchive(YAML::Node node) : node_(std::move(node)) {}
   /// Reads a key that validation filled in.
   template <typename T>
-  void field(const char* key, T& value, const std::shared_ptr<const Schema>& = {}, const std::string& = {}) {
-    read(node_[key], value);
+  void field(const char* key, T& value, const std::shared_ptr<const Schema>& schema = {}, const std::string& = {}) {
+    read(node_[key], value, schema.get());
   }
   /// Reads a required key.
   template <typename T>
-  void required(const char* key, T& value, const std::shared_ptr<const Schema>& = {}, const std::string& = {}) {
-    read(node_[key], value);
+  void required(const char* key, T& value, const std::shared_ptr<const Schema>& schema = {}, const std::string& = {}) {
+    read(node_[key], value, schema.get());
   }
   /// Reads an optional key when it is present and not null.
   template <typename T>
-  void optional(const char* key, T& value, const std::shared_ptr<const Schema>& = {}, const std::string& = {}) {
+  void optional(const char* key, T& value, const std::shared_ptr<const Schema>& schema = {}, const std::string& = {}) {
     const YAML::Node child = node_[key];
-    if (child.IsDefined() && !child.IsNull()) read(child, value);
+    if (child.IsDefined() && !child.IsNull()) read(child, value, schema.get());
+  }
+  /// Reads the keys of sub-map `key` that `visit_keys(archive)` declares.
+  template <typename VisitKeys>
+  void section(const std::string& key, VisitKeys&& visit_keys, const std::string& = {}) {
+    ReadArchive nested(node_[key]);
+    visit_keys(nested);
   }
 
  private:
   template <typename T>
-  static void read(const YAML::Node& node, T& value) {
+  static void read(const YAML::Node& node, T& value, const Schema* schema) {
     if constexpr (std::is_same_v<T, YAML::Node>) {
       value = node;
     } else if constexpr (requires(T& t, ReadArchive& a) { t.visit(a); }) {  // a nested settings struct
@@ -115,11 +141,97 @@ class ReadArchive {
       }
     } else if constexpr (IsOptional<T>::value) {
       value = node.as<typename T::value_type>();
+    } else if constexpr (IsStdArray<T>::value) {  // a value per name of its named_map schema
+      if (schema == nullptr || schema->kind() != Schema::Kind::Map || schema->fields().size() > value.size()) {
+        throw std::logic_error("a std::array setting needs a named_map schema with at most as many names as elements");
+      }
+      for (std::size_t i = 0; i < schema->fields().size(); ++i) {
+        const Field& f = schema->fields()[i];
+        const YAML::Node child = node[f.key];
+        value[i] = {};
+        if (child.IsDefined() && !child.IsNull()) read(child, value[i], f.schema.get());
+      }
     } else {
       value = node.as<T>();
     }
   }
   YAML::Node node_;
+};
+
+/// Writes a settings struct as YAML through its `visit` list: nested structs and maps of maps as blocks, a value
+/// per name of scalars as one flow line, numbers as the shortest text that reads back the same value. An empty
+/// std::optional and a zero value under an optional name of a `named_map` are left out.
+class WriteArchive {
+ public:
+  /// Writes into `out`, which is inside a map.
+  explicit WriteArchive(YAML::Emitter& out) : out_(out) {}
+  /// Writes a key.
+  template <typename T>
+  void field(const char* key, T& value, const std::shared_ptr<const Schema>& schema = {}, const std::string& = {}) {
+    out_ << YAML::Key << key << YAML::Value;
+    write(value, schema.get());
+  }
+  /// Writes a required key.
+  template <typename T>
+  void required(const char* key, T& value, const std::shared_ptr<const Schema>& schema = {}, const std::string& = {}) {
+    field(key, value, schema);
+  }
+  /// Writes an optional key unless it is an empty std::optional.
+  template <typename T>
+  void optional(const char* key, T& value, const std::shared_ptr<const Schema>& schema = {}, const std::string& = {}) {
+    if constexpr (IsOptional<T>::value) {
+      if (!value) return;
+    }
+    field(key, value, schema);
+  }
+  /// Writes sub-map `key` with the keys `visit_keys(archive)` declares.
+  template <typename VisitKeys>
+  void section(const std::string& key, VisitKeys&& visit_keys, const std::string& = {}) {
+    out_ << YAML::Key << key << YAML::Value << YAML::BeginMap;
+    visit_keys(*this);
+    out_ << YAML::EndMap;
+  }
+
+ private:
+  template <typename T>
+  void write(T& value, const Schema* schema) {
+    if constexpr (std::is_same_v<T, YAML::Node>) {
+      out_ << value;
+    } else if constexpr (requires(T& t, WriteArchive& a) { t.visit(a); }) {  // a nested settings struct
+      out_ << YAML::BeginMap;
+      value.visit(*this);
+      out_ << YAML::EndMap;
+    } else if constexpr (std::is_enum_v<T>) {
+      out_ << std::string(to_string(value));
+    } else if constexpr (IsOptional<T>::value) {
+      if (value) {
+        write(*value, schema);
+      } else {
+        out_ << YAML::Null;
+      }
+    } else if constexpr (IsStdArray<T>::value) {
+      if (schema == nullptr || schema->kind() != Schema::Kind::Map || schema->fields().size() > value.size()) {
+        throw std::logic_error("a std::array setting needs a named_map schema with at most as many names as elements");
+      }
+      using Element = typename T::value_type;
+      if constexpr (std::is_arithmetic_v<Element>) out_ << YAML::Flow;
+      out_ << YAML::BeginMap;
+      for (std::size_t i = 0; i < schema->fields().size(); ++i) {
+        const Field& f = schema->fields()[i];
+        if constexpr (std::equality_comparable<Element>) {
+          if (!f.required && value[i] == Element{}) continue;  // what reading the absent name gives back
+        }
+        out_ << YAML::Key << f.key << YAML::Value;
+        write(value[i], f.schema.get());
+      }
+      out_ << YAML::EndMap;
+    } else if constexpr (std::is_floating_point_v<T>) {
+      out_ << fmt::format("{}", value);
+    } else {
+      out_ << value;
+    }
+  }
+  YAML::Emitter& out_;
 };
 
 /// The map schema of settings struct `T` (its `visit` may take extra context, e.g. the accepted names).
@@ -135,6 +247,18 @@ T read_settings(const YAML::Node& node, const Context&... context) {
   ReadArchive archive(node);
   settings.visit(archive, context...);
   return settings;
+}
+
+/// Settings struct `T` as YAML text (a block map) that `read_settings<T>` reads back to the same values.
+template <typename T, typename... Context>
+std::string write_settings(const T& settings, const Context&... context) {
+  T copy = settings;  // `visit` hands out its members as mutable references
+  YAML::Emitter out;
+  WriteArchive archive(out);
+  out << YAML::BeginMap;
+  copy.visit(archive, context...);
+  out << YAML::EndMap;
+  return out.c_str();
 }
 
 /// Settings struct `T` from a node nothing validated yet (absent or null: every default), such as a policy's

@@ -122,6 +122,16 @@ Field with_default(std::string key, std::shared_ptr<const Schema> schema, const 
 /// Shorthand for an optional field without a default.
 Field optional(std::string key, std::shared_ptr<const Schema> schema, std::string help = {});
 
+/// Whether a map of names (`named_map`) must give every name or may leave some out.
+enum class KeyCoverage {
+  All,   ///< every name is a required key
+  Some,  ///< every name is an optional key (an absent one reads as zero)
+};
+/// A map whose keys are `names`, in that order, each with a value matching `value` (e.g. a value per label of an
+/// axis); a std::array member read with it takes element i from key `names[i]` (core/settings_archive.hpp).
+std::shared_ptr<const Schema> named_map(const std::vector<std::string>& names, std::shared_ptr<const Schema> value,
+                                        KeyCoverage coverage);
+
 /// Applies `KEY.PATH=VALUE` overrides (VALUE parsed as YAML) to `root`; list indices as `a.b[2].c` or `a.b.2.c`.
 void apply_override(YAML::Node root, const std::string& assignment, const std::string& origin = "--set");
 
