@@ -105,15 +105,18 @@ class CatalogueChecker {
   }
 
  private:
+  /// Throws the InputError for `problem` at `node`'s position, naming `key`.
   [[noreturn]] void fail(const YAML::Node& node, const std::string& key, const std::string& problem,
                          const std::string& allowed = {}) const {
     throw InputError(problem, key, allowed, location_of(node, file_));
   }
 
+  /// Rejects an empty string (the schema accepts any scalar).
   void require_text(const std::string& value, const YAML::Node& at, const std::string& key) const {
     if (value.empty()) fail(at, key, "expected a non-empty string");
   }
 
+  /// The ItemSpec of `entry` (its node `at`, key path `key`): frame name, positive scale and density, polygon.
   ItemSpec item_spec(const ItemEntry& entry, const YAML::Node& at, const std::string& key) const {
     ItemSpec spec;
     spec.name = entry.name;

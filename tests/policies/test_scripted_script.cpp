@@ -48,6 +48,7 @@ class ScriptFile {
   ~ScriptFile() { std::filesystem::remove(path_); }
   ScriptFile(const ScriptFile&) = delete;
   ScriptFile& operator=(const ScriptFile&) = delete;
+  /// The file's path.
   std::string path() const { return path_.string(); }
 
  private:
