@@ -10,6 +10,8 @@
 
 #include "freeplay/core/assets.hpp"
 #include "freeplay/core/error.hpp"
+#include "freeplay/core/settings_archive.hpp"
+#include "freeplay/core/yaml_schema.hpp"
 #include "freeplay/sim/screen.hpp"
 
 namespace freeplay::sim {
@@ -19,48 +21,83 @@ namespace {
 constexpr std::size_t kMaxPolygonVertices = 8;
 /// Shortest polygon edge we accept (m): Box2D welds vertices that are closer than its linear slop.
 constexpr double kMinEdgeM = 1e-4;
+/// Bound on physics parameters and vertex coordinates in the schema: far beyond any real item, so that the checks
+/// after reading (metres, not pixels) give the telling message.
+constexpr double kSchemaBound = 1e6;
 
-const char* const kItemKeys = "name, label, scale, polygon, physics, picture, colour";
-const char* const kPhysicsKeys = "density, friction, restitution";
+/// `physics:` of a catalogue entry: the Box2D fixture's parameters.
+struct PhysicsEntry {
+  double density = 1.0;      ///< fixture density (QML units), > 0
+  double friction = 1.0;     ///< fixture friction
+  double restitution = 0.1;  ///< fixture restitution
 
-/// Reads one catalogue file and reports problems at their YAML position.
-class CatalogueReader {
- public:
-  explicit CatalogueReader(std::filesystem::path path) : path_(std::move(path)) {}
-
-  [[noreturn]] void fail(const YAML::Node& node, const std::string& key, const std::string& problem,
-                         const std::string& allowed = {}) const {
-    SourceLocation where{path_.string(), 0, 0};
-    if (node.IsDefined()) {
-      const YAML::Mark mark = node.Mark();
-      if (mark.line >= 0) where.line = mark.line + 1;
-      if (mark.column >= 0) where.column = mark.column + 1;
-    }
-    throw InputError(problem, key, allowed, where);
+  /// The keys of `physics:`.
+  template <typename Archive>
+  void visit(Archive& a) {
+    a.required("density", density, Schema::number(0, kSchemaBound), "Box2D fixture density (> 0, kg per (32 px)²)");
+    a.required("friction", friction, Schema::number(0, kSchemaBound), "Box2D fixture friction");
+    a.required("restitution", restitution, Schema::number(0, 1), "Box2D fixture restitution");
   }
+};
 
-  std::vector<ItemSpec> read() const {
-    YAML::Node root;
-    try {
-      root = YAML::LoadFile(path_.string());
-    } catch (const YAML::BadFile&) {
-      throw InputError("cannot open the item catalogue", "", "", {path_.string(), 0, 0});
-    } catch (const YAML::ParserException& e) {
-      throw InputError("YAML syntax error: " + e.msg, "", "",
-                       {path_.string(), e.mark.line + 1, e.mark.column + 1});
-    }
-    if (!root.IsMap()) fail(root, "", "expected a map with the key 'items'");
-    check_keys(root, "", {"items"}, "items");
-    const YAML::Node items = root["items"];
-    if (!items) fail(root, "items", "missing key");
-    if (!items.IsSequence() || items.size() == 0) fail(items, "items", "expected a non-empty list of items");
+/// What `polygon:` accepts: `octagon` or a vertex list (the vertex count, convexity and units are checked after
+/// reading, with Box2D's reasons).
+std::shared_ptr<const Schema> polygon_schema() {
+  return Schema::one_of({Schema::enumeration({"octagon"}),
+                         Schema::list(Schema::list(Schema::number(-kSchemaBound, kSchemaBound), 2, 2))},
+                        "'octagon' or a list of 3 to 8 [x, y] vertices (m)");
+}
+
+/// One entry of `items:`, as the catalogue file writes it (ItemSpec is built from it and checked).
+struct ItemEntry {
+  std::string name;                ///< TF frame name
+  std::string label;               ///< label drawn on the picture
+  double scale = 1.0;              ///< the QML `scale`
+  YAML::Node polygon;              ///< `octagon` or the vertex list (kept as a node: either form, and its positions)
+  PhysicsEntry physics;            ///< Box2D fixture parameters
+  std::string picture;             ///< picture file under assets/
+  std::array<int, 3> colour{};     ///< dominant RGB colour
+
+  /// The keys of one catalogue item.
+  template <typename Archive>
+  void visit(Archive& a) {
+    a.required("name", name, Schema::string(), "TF frame name: lower-case letters, digits and '_'");
+    a.required("label", label, Schema::string(), "label drawn on the picture");
+    a.required("scale", scale, Schema::number(0, 10), "the QML `scale` (> 0): box side = scale × 0.03375 m");
+    a.required("polygon", polygon, polygon_schema(), "Box2D fixture and published footprint (m, item frame)");
+    a.required("physics", physics, settings_schema<PhysicsEntry>(), "Box2D fixture parameters");
+    a.required("picture", picture, Schema::string(), "PNG with alpha under assets/");
+    a.required("colour", colour, Schema::list(Schema::integer(0, 255), 3, 3), "dominant colour [r, g, b]");
+  }
+};
+
+/// A catalogue file.
+struct CatalogueFile {
+  std::vector<ItemEntry> items;  ///< the items, in catalogue order
+
+  /// The keys of a catalogue file.
+  template <typename Archive>
+  void visit(Archive& a) {
+    a.required("items", items, Schema::list(settings_schema<ItemEntry>(), 1), "the items, in catalogue order");
+  }
+};
+
+/// Builds the ItemSpecs of one validated catalogue file, checking what its schema cannot say; a problem is reported
+/// at its YAML position.
+class CatalogueChecker {
+ public:
+  explicit CatalogueChecker(std::string file) : file_(std::move(file)) {}
+
+  /// Every item of `catalogue`, read from `root` (validated; its nodes give the positions).
+  std::vector<ItemSpec> specs(const CatalogueFile& catalogue, const YAML::Node& root) const {
     std::vector<ItemSpec> specs;
     std::set<std::string> names;
-    for (std::size_t i = 0; i < items.size(); ++i) {
+    for (std::size_t i = 0; i < catalogue.items.size(); ++i) {
       const std::string key = fmt::format("items[{}]", i);
-      ItemSpec spec = read_item(items[i], key);
+      const YAML::Node at = root["items"][i];
+      ItemSpec spec = item_spec(catalogue.items[i], at, key);
       if (!names.insert(spec.name).second) {
-        fail(items[i]["name"], key + ".name", fmt::format("duplicate item name '{}'", spec.name));
+        fail(at["name"], key + ".name", fmt::format("duplicate item name '{}'", spec.name));
       }
       specs.push_back(std::move(spec));
     }
@@ -68,43 +105,22 @@ class CatalogueReader {
   }
 
  private:
-  void check_keys(const YAML::Node& map, const std::string& prefix, const std::set<std::string>& allowed,
-                  const char* allowed_text) const {
-    for (const auto& entry : map) {
-      const auto key = entry.first.as<std::string>();
-      if (allowed.count(key) == 0) {
-        fail(entry.first, prefix.empty() ? key : prefix + "." + key, "unknown key", allowed_text);
-      }
-    }
+  /// Throws the InputError for `problem` at `node`'s position, naming `key`.
+  [[noreturn]] void fail(const YAML::Node& node, const std::string& key, const std::string& problem,
+                         const std::string& allowed = {}) const {
+    throw InputError(problem, key, allowed, location_of(node, file_));
   }
 
-  YAML::Node required(const YAML::Node& map, const std::string& prefix, const char* key) const {
-    const YAML::Node node = map[key];
-    if (!node) fail(map, prefix + "." + key, "missing key");
-    return node;
+  /// Rejects an empty string (the schema accepts any scalar).
+  void require_text(const std::string& value, const YAML::Node& at, const std::string& key) const {
+    if (value.empty()) fail(at, key, "expected a non-empty string");
   }
 
-  double number(const YAML::Node& node, const std::string& key) const {
-    if (!node.IsScalar()) fail(node, key, "expected a number");
-    try {
-      const double value = node.as<double>();
-      if (!std::isfinite(value)) fail(node, key, "expected a finite number");
-      return value;
-    } catch (const YAML::BadConversion&) {
-      fail(node, key, fmt::format("expected a number, got '{}'", node.Scalar()));
-    }
-  }
-
-  std::string text(const YAML::Node& node, const std::string& key) const {
-    if (!node.IsScalar() || node.Scalar().empty()) fail(node, key, "expected a non-empty string");
-    return node.Scalar();
-  }
-
-  ItemSpec read_item(const YAML::Node& node, const std::string& key) const {
-    if (!node.IsMap()) fail(node, key, "expected a map describing one item");
-    check_keys(node, key, {"name", "label", "scale", "polygon", "physics", "picture", "colour"}, kItemKeys);
+  /// The ItemSpec of `entry` (its node `at`, key path `key`): frame name, positive scale and density, polygon.
+  ItemSpec item_spec(const ItemEntry& entry, const YAML::Node& at, const std::string& key) const {
     ItemSpec spec;
-    spec.name = text(required(node, key, "name"), key + ".name");
+    spec.name = entry.name;
+    require_text(spec.name, at["name"], key + ".name");
     const bool valid_name =
         std::islower(static_cast<unsigned char>(spec.name.front())) != 0 &&
         std::all_of(spec.name.begin(), spec.name.end(), [](char c) {
@@ -112,24 +128,28 @@ class CatalogueReader {
                  c == '_';
         });
     if (!valid_name) {
-      fail(node["name"], key + ".name", fmt::format("'{}' is not a valid TF frame name", spec.name),
+      fail(at["name"], key + ".name", fmt::format("'{}' is not a valid TF frame name", spec.name),
            "lower-case letters, digits and '_', starting with a letter");
     }
-    spec.label = text(required(node, key, "label"), key + ".label");
-    const YAML::Node scale = required(node, key, "scale");
-    spec.scale = number(scale, key + ".scale");
-    if (spec.scale <= 0.0 || spec.scale > 10.0) fail(scale, key + ".scale", "out of range", "0 < scale <= 10");
+    spec.label = entry.label;
+    require_text(spec.label, at["label"], key + ".label");
+    spec.scale = entry.scale;
+    if (spec.scale <= 0.0) fail(at["scale"], key + ".scale", "out of range", "0 < scale <= 10");
     spec.box_side_m = spec.scale * kItemBaseSideM;
-    spec.polygon = read_polygon(required(node, key, "polygon"), key + ".polygon", spec.box_side_m);
-    read_physics(required(node, key, "physics"), key + ".physics", spec);
-    spec.picture = text(required(node, key, "picture"), key + ".picture");
-    spec.colour = read_colour(required(node, key, "colour"), key + ".colour");
+    spec.polygon = polygon_of(entry.polygon, key + ".polygon", spec.box_side_m);
+    spec.density = entry.physics.density;
+    if (spec.density <= 0.0) fail(at["physics"]["density"], key + ".physics.density", "must be positive");
+    spec.friction = entry.physics.friction;
+    spec.restitution = entry.physics.restitution;
+    spec.picture = entry.picture;
+    require_text(spec.picture, at["picture"], key + ".picture");
+    for (std::size_t i = 0; i < 3; ++i) spec.colour[i] = static_cast<std::uint8_t>(entry.colour[i]);
     return spec;
   }
 
-  Polygon2 read_polygon(const YAML::Node& node, const std::string& key, double box_side_m) const {
-    if (node.IsScalar()) {
-      if (node.Scalar() != "octagon") fail(node, key, "expected a list of [x, y] vertices or 'octagon'");
+  /// The polygon `node` gives (the schema let through `octagon` or a list of [x, y]), counter-clockwise.
+  Polygon2 polygon_of(const YAML::Node& node, const std::string& key, double box_side_m) const {
+    if (node.IsScalar()) {  // octagon
       Polygon2 octagon;
       for (int k = 0; k < 8; ++k) {
         const double angle = k * std::numbers::pi / 4.0;
@@ -137,19 +157,15 @@ class CatalogueReader {
       }
       return octagon;
     }
-    if (!node.IsSequence()) fail(node, key, "expected a list of [x, y] vertices or 'octagon'");
     if (node.size() < 3 || node.size() > kMaxPolygonVertices) {
       fail(node, key, fmt::format("{} vertices (Box2D polygons have 3 to {})", node.size(), kMaxPolygonVertices));
     }
     Polygon2 polygon;
-    for (std::size_t i = 0; i < node.size(); ++i) {
-      const std::string vkey = fmt::format("{}[{}]", key, i);
-      const YAML::Node vertex = node[i];
-      if (!vertex.IsSequence() || vertex.size() != 2) fail(vertex, vkey, "expected [x, y] in metres");
-      const Vec2 v(number(vertex[0], vkey + "[0]"), number(vertex[1], vkey + "[1]"));
+    for (const auto& [x, y] : node.as<std::vector<std::array<double, 2>>>()) {
+      const Vec2 v(x, y);
       if (std::abs(v.x()) > box_side_m || std::abs(v.y()) > box_side_m) {
-        fail(vertex, vkey, fmt::format("vertex lies far outside the item box (side {:.4f} m): metres expected",
-                                       box_side_m));
+        fail(node[polygon.size()], fmt::format("{}[{}]", key, polygon.size()),
+             fmt::format("vertex lies far outside the item box (side {:.4f} m): metres expected", box_side_m));
       }
       polygon.push_back(v);
     }
@@ -185,43 +201,18 @@ class CatalogueReader {
     return polygon;
   }
 
-  void read_physics(const YAML::Node& node, const std::string& key, ItemSpec& spec) const {
-    if (!node.IsMap()) fail(node, key, "expected a map", kPhysicsKeys);
-    check_keys(node, key, {"density", "friction", "restitution"}, kPhysicsKeys);
-    const YAML::Node density = required(node, key, "density");
-    spec.density = number(density, key + ".density");
-    if (spec.density <= 0.0) fail(density, key + ".density", "must be positive");
-    const YAML::Node friction = required(node, key, "friction");
-    spec.friction = number(friction, key + ".friction");
-    if (spec.friction < 0.0) fail(friction, key + ".friction", "must not be negative");
-    const YAML::Node restitution = required(node, key, "restitution");
-    spec.restitution = number(restitution, key + ".restitution");
-    if (spec.restitution < 0.0 || spec.restitution > 1.0) {
-      fail(restitution, key + ".restitution", "out of range", "0 <= restitution <= 1");
-    }
-  }
-
-  std::array<std::uint8_t, 3> read_colour(const YAML::Node& node, const std::string& key) const {
-    if (!node.IsSequence() || node.size() != 3) fail(node, key, "expected [r, g, b] with 0…255 integers");
-    std::array<std::uint8_t, 3> rgb{};
-    for (std::size_t i = 0; i < 3; ++i) {
-      const std::string ckey = fmt::format("{}[{}]", key, i);
-      const double value = number(node[i], ckey);
-      if (value < 0.0 || value > 255.0 || value != std::floor(value)) {
-        fail(node[i], ckey, "expected an integer", "0…255");
-      }
-      rgb[i] = static_cast<std::uint8_t>(value);
-    }
-    return rgb;
-  }
-
-  std::filesystem::path path_;
+  std::string file_;
 };
 
 }  // namespace
 
 ItemCatalogue ItemCatalogue::load(const std::filesystem::path& path) {
-  return ItemCatalogue(CatalogueReader(path).read());
+  const auto doc = load_yaml_file(path);
+  YAML::Node root = doc.root;
+  ValidationErrors errors;
+  settings_schema<CatalogueFile>()->validate(root, "", doc.file, errors);
+  errors.throw_if_any();
+  return ItemCatalogue(CatalogueChecker(doc.file).specs(read_settings<CatalogueFile>(root), root));
 }
 
 ItemCatalogue ItemCatalogue::load_default() { return load(asset_path("items/catalogue.yaml")); }

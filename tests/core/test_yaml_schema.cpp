@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <array>
 #include <string>
 
 #include "freeplay/core/settings_archive.hpp"
@@ -181,4 +182,101 @@ TEST(SettingsArchive, EnumMembersAreReadAndWrittenByTheirNames) {
     EXPECT_EQ(std::string(error.what()),
               "test.yaml:1:9: 'shaded.shade': unknown value 'grey' (allowed: one of light, dark)");
   }
+}
+
+namespace {
+
+/// A settings struct used as a list element and as an optional nested block.
+struct Waypoint {
+  double x = 0.0;
+  std::string label = "here";
+
+  template <typename Archive>
+  void visit(Archive& a) {
+    a.required("x", x, Schema::number(-1, 1));
+    a.field("label", label, Schema::string());
+  }
+};
+
+/// A settings struct holding a list of settings structs and optional nested ones.
+struct Route {
+  std::vector<Waypoint> stops;
+  std::optional<Waypoint> detour;
+  std::optional<std::vector<Waypoint>> extras;
+  std::vector<std::string> tags = {"default"};
+  std::array<double, 2> at{};
+
+  template <typename Archive>
+  void visit(Archive& a) {
+    a.optional("stops", stops, Schema::list(settings_schema<Waypoint>()));
+    a.optional("detour", detour, settings_schema<Waypoint>());
+    a.optional("extras", extras, Schema::list(settings_schema<Waypoint>()));
+    a.optional("tags", tags, Schema::list(Schema::string()));
+    a.optional("at", at, Schema::list(Schema::number(-1, 1), 2, 2));
+  }
+};
+
+}  // namespace
+
+TEST(SettingsArchive, ListsOfSettingsStructsAreReadElementByElementWithTheirDefaults) {
+  const Route route = validated<Route>("{stops: [{x: 0.5}, {x: -1, label: start}], tags: [a, b]}", "route");
+  ASSERT_EQ(route.stops.size(), 2u);
+  EXPECT_DOUBLE_EQ(route.stops[0].x, 0.5);
+  EXPECT_EQ(route.stops[0].label, "here");  // the element's default
+  EXPECT_DOUBLE_EQ(route.stops[1].x, -1.0);
+  EXPECT_EQ(route.stops[1].label, "start");
+  EXPECT_EQ(route.tags, (std::vector<std::string>{"a", "b"}));
+  EXPECT_FALSE(route.detour.has_value());
+  EXPECT_FALSE(route.extras.has_value());
+  EXPECT_TRUE(validated<Route>("{}", "route").stops.empty());
+  EXPECT_EQ(validated<Route>("{}", "route").tags, (std::vector<std::string>{"default"}));  // absent: the initialiser
+}
+
+TEST(SettingsArchive, OptionalSettingsStructsAreReadWhenGiven) {
+  const Route route = validated<Route>("{detour: {x: 0.25}, extras: []}", "route");
+  ASSERT_TRUE(route.detour.has_value());
+  EXPECT_DOUBLE_EQ(route.detour->x, 0.25);
+  EXPECT_EQ(route.detour->label, "here");
+  ASSERT_TRUE(route.extras.has_value());  // given, though empty
+  EXPECT_TRUE(route.extras->empty());
+  EXPECT_EQ(validated<Route>("{extras: [{x: 1}]}", "route").extras->at(0).x, 1.0);
+}
+
+TEST(SettingsArchive, AProblemInAListElementNamesItsIndexAndPosition) {
+  try {
+    validated<Route>("stops:\n  - {x: 0}\n  - {x: 2}\n", "route");
+    FAIL() << "no error";
+  } catch (const InputError& error) {
+    EXPECT_EQ(std::string(error.what()),
+              "test.yaml:3:9: 'route.stops[1].x': 2 is out of range (allowed: a number in [-1, 1])");
+  }
+  try {
+    validated<Route>("detour: {label: x}\n", "route");
+    FAIL() << "no error";
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.key(), "route.detour.x");
+    EXPECT_EQ(error.where().line, 1);
+  }
+}
+
+TEST(SettingsArchive, AStdArrayWithAListSchemaIsAFixedLengthList) {
+  const Route route = validated<Route>("{at: [0.5, -0.25]}", "route");
+  EXPECT_EQ(route.at, (std::array<double, 2>{0.5, -0.25}));
+  EXPECT_THROW(validated<Route>("{at: [0.5]}", "route"), InputError);
+}
+
+TEST(SettingsArchive, ListsAndOptionalStructsAreWrittenBackToTheSameValues) {
+  const Route route =
+      validated<Route>("{stops: [{x: 0.5}, {x: -1, label: start}], detour: {x: 0.25}, extras: [], at: [0.5, -0.25]}",
+                       "route");
+  const Route again = validated<Route>(write_settings(route), "route");
+  ASSERT_EQ(again.stops.size(), 2u);
+  EXPECT_EQ(again.stops[1].label, "start");
+  EXPECT_DOUBLE_EQ(again.stops[0].x, 0.5);
+  ASSERT_TRUE(again.detour.has_value());
+  EXPECT_DOUBLE_EQ(again.detour->x, 0.25);
+  ASSERT_TRUE(again.extras.has_value());
+  EXPECT_TRUE(again.extras->empty());
+  EXPECT_EQ(again.tags, route.tags);
+  EXPECT_EQ(again.at, route.at);
 }

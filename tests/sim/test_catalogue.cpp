@@ -148,7 +148,23 @@ TEST_F(CatalogueFileTest, WrongTypeIsRejected) {
   EXPECT_EQ(error_of(with("label: Zebra", "label: [a, b]")).key(), "items[0].label");
   EXPECT_EQ(error_of(with("colour: [1, 2, 3]", "colour: [1, 2, 300]")).key(), "items[0].colour[2]");
   EXPECT_EQ(error_of(with("restitution: 0.1", "restitution: 1.5")).key(), "items[0].physics.restitution");
-  EXPECT_EQ(error_of(with("density: 1.0", "densty: 1.0")).key(), "items[0].physics.densty");
+}
+
+TEST_F(CatalogueFileTest, AMisspeltKeyIsReportedWithTheKeyItLeavesMissing) {
+  // Every problem the schema finds is reported at once, each with its position.
+  const auto path = write(with("density: 1.0", "densty: 1.0"));
+  try {
+    (void)ItemCatalogue::load(path);
+    FAIL() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "items[0].physics.densty");
+    const std::string message = e.what();
+    EXPECT_NE(message.find(path.string() + ":6:15: 'items[0].physics.densty': unknown key"), std::string::npos)
+        << message;
+    EXPECT_NE(message.find(path.string() + ":6:14: 'items[0].physics.density': missing required key"),
+              std::string::npos)
+        << message;
+  }
 }
 
 TEST_F(CatalogueFileTest, MissingKeyIsNamed) {
@@ -198,6 +214,42 @@ TEST_F(CatalogueFileTest, DuplicateNamesAreRejected) {
   EXPECT_EQ(e.key(), "items[1].name");
   EXPECT_EQ(e.where().line, 9);
   EXPECT_NE(e.problem().find("duplicate"), std::string::npos);
+}
+
+TEST_F(CatalogueFileTest, BadValuesAreNamedAtTheirPosition) {
+  struct Case {
+    const char* from;
+    const char* to;
+    const char* key;
+    int line;
+    int column;
+  };
+  const Case cases[] = {
+      {"name: zebra", "name: Zebra", "items[0].name", 2, 11},            // not a TF frame name
+      {"label: Zebra", "label: ''", "items[0].label", 3, 12},            // empty
+      {"scale: 1.0", "scale: 0", "items[0].scale", 4, 12},               // not > 0
+      {"scale: 1.0", "scale: 11", "items[0].scale", 4, 12},              // above 10
+      {"polygon: octagon", "polygon: hexagon", "items[0].polygon", 5, 14},
+      {"polygon: octagon", "polygon: [[0, 0, 0], [0.01, 0], [0, 0.01]]", "items[0].polygon[0]", 5, 15},
+      {"density: 1.0", "density: 0", "items[0].physics.density", 6, 24},
+      {"friction: 1.0", "friction: -1", "items[0].physics.friction", 6, 39},
+      {"picture: items/zebra.png", "picture: ''", "items[0].picture", 7, 14},
+      {"colour: [1, 2, 3]", "colour: [1, 2]", "items[0].colour", 8, 13},
+      {"colour: [1, 2, 3]", "colour: [1, 2.5, 3]", "items[0].colour[1]", 8, 17},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.to);
+    const InputError e = error_of(with(c.from, c.to));
+    EXPECT_EQ(e.key(), c.key);
+    EXPECT_EQ(e.where().line, c.line);
+    EXPECT_EQ(e.where().column, c.column);
+  }
+}
+
+TEST_F(CatalogueFileTest, AFileWithoutItemsIsNamed) {
+  EXPECT_EQ(error_of("items: []\n").key(), "items");
+  EXPECT_EQ(error_of("{}\n").key(), "items");
+  EXPECT_EQ(error_of("- zebra\n").where().line, 1);
 }
 
 TEST_F(CatalogueFileTest, SyntaxErrorsHaveAPosition) {

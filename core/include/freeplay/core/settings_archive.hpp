@@ -10,6 +10,10 @@
 // `KeyCoverage::Some` map leaves out reads as zero). `a.section(key, visit_keys)` declares a required sub-map whose
 // keys a lambda lists (for keys that need context, such as a loop over names). `write_settings<T>(settings)` writes
 // a struct back as YAML through the same list (WriteArchive), so each key is named once in the code.
+// A member that is itself a settings struct, a `std::optional` of one or a `std::vector` of them is read through its
+// own `visit`; its schema is given as `settings_schema<Nested>()` (a list: `Schema::list(settings_schema<Nested>())`,
+// declared with `a.optional` or `a.required`: an absent optional list keeps the member's initialiser). A std::array
+// member given a fixed-length `Schema::list` schema is read and written as that list.
 
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
@@ -21,6 +25,7 @@
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "freeplay/core/enum_names.hpp"
@@ -57,6 +62,13 @@ struct IsStdArray : std::false_type {};
 /// True for std::array members (read and written as a value per name of their `named_map` schema).
 template <typename T, std::size_t N>
 struct IsStdArray<std::array<T, N>> : std::true_type {};
+/// True for std::vector members (read element by element, so a list of settings structs reads each through its
+/// `visit`).
+template <typename T>
+struct IsVector : std::false_type {};
+/// True for std::vector members (read element by element).
+template <typename T, typename Allocator>
+struct IsVector<std::vector<T, Allocator>> : std::true_type {};
 
 /// Collects the schema fields of a settings struct, with the defaults of a default-constructed instance.
 class SchemaArchive {
@@ -139,9 +151,24 @@ class ReadArchive {
         throw std::invalid_argument(fmt::format("'{}' is none of the allowed names (the schema lets it through)",
                                                 node.Scalar()));
       }
-    } else if constexpr (IsOptional<T>::value) {
-      value = node.as<typename T::value_type>();
-    } else if constexpr (IsStdArray<T>::value) {  // a value per name of its named_map schema
+    } else if constexpr (IsOptional<T>::value) {  // e.g. an optional nested settings struct
+      typename T::value_type inner{};
+      read(node, inner, schema);
+      value = std::move(inner);
+    } else if constexpr (IsVector<T>::value) {  // e.g. a list of settings structs
+      value.clear();
+      value.reserve(node.size());
+      for (const auto& element : node) {
+        typename T::value_type item{};
+        read(element, item, schema != nullptr ? schema->element() : nullptr);
+        value.push_back(std::move(item));
+      }
+    } else if constexpr (IsStdArray<T>::value) {
+      if (schema != nullptr && schema->kind() == Schema::Kind::List) {  // a list whose schema fixed its length
+        for (std::size_t i = 0; i < value.size(); ++i) read(node[i], value[i], schema->element());
+        return;
+      }
+      // a value per name of its named_map schema
       if (schema == nullptr || schema->kind() != Schema::Kind::Map || schema->fields().size() > value.size()) {
         throw std::logic_error("a std::array setting needs a named_map schema with at most as many names as elements");
       }
@@ -209,11 +236,23 @@ class WriteArchive {
       } else {
         out_ << YAML::Null;
       }
+    } else if constexpr (IsVector<T>::value) {  // a list: numbers on one line, structs as blocks
+      if constexpr (std::is_arithmetic_v<typename T::value_type>) out_ << YAML::Flow;
+      out_ << YAML::BeginSeq;
+      for (auto& element : value) write(element, schema != nullptr ? schema->element() : nullptr);
+      out_ << YAML::EndSeq;
     } else if constexpr (IsStdArray<T>::value) {
+      using Element = typename T::value_type;
+      if (schema != nullptr && schema->kind() == Schema::Kind::List) {  // a fixed-length list
+        if constexpr (std::is_arithmetic_v<Element>) out_ << YAML::Flow;
+        out_ << YAML::BeginSeq;
+        for (auto& element : value) write(element, schema->element());
+        out_ << YAML::EndSeq;
+        return;
+      }
       if (schema == nullptr || schema->kind() != Schema::Kind::Map || schema->fields().size() > value.size()) {
         throw std::logic_error("a std::array setting needs a named_map schema with at most as many names as elements");
       }
-      using Element = typename T::value_type;
       if constexpr (std::is_arithmetic_v<Element>) out_ << YAML::Flow;
       out_ << YAML::BeginMap;
       for (std::size_t i = 0; i < schema->fields().size(); ++i) {

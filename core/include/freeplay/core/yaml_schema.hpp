@@ -94,6 +94,8 @@ class Schema {
   Kind kind() const { return kind_; }
   /// The fields of a map schema.
   const std::vector<Field>& fields() const { return fields_; }
+  /// The element schema of a list (or the value schema of a dictionary), or nullptr.
+  const Schema* element() const { return element_.get(); }
   /// The schema of a map field, or nullptr when not a known key.
   const Schema* field(const std::string& key) const;
 
