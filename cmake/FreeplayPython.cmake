@@ -1,6 +1,5 @@
-# Whether the `freeplay` Python module (python/, docs/python.md) is built: FREEPLAY_PYTHON_MODULE, decided here before
-# any library is defined, because a Python extension is a shared object and the libraries it links must then be
-# compiled as position-independent code (the root CMakeLists.txt turns that on for the whole build when this is ON).
+# Whether the `freeplay` Python module (python/, docs/python.md) is built: FREEPLAY_PYTHON_MODULE. A Python extension
+# is a shared object; the libraries it links are position-independent like the whole build (root CMakeLists.txt).
 # Built when Debian's pybind11-dev and python3-dev are present (scripts/setup.sh), against /usr/bin/python3.
 option(FREEPLAY_PYTHON "Build the freeplay Python module when pybind11 and Python's headers are installed" ON)
 set(FREEPLAY_PYTHON_MODULE OFF)
