@@ -1,6 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <optional>
+#include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "freeplay/core/settings_archive.hpp"
 #include "freeplay/core/yaml_schema.hpp"
@@ -154,13 +157,15 @@ constexpr bool from_string(std::string_view text, Shade& shade) {
   return enum_from_string(text, {Shade::light, Shade::dark}, shade);
 }
 
-/// A settings struct with an enum member.
+/// A settings struct with an enum member and an optional one (absent: nullopt, as `rendering.backend`).
 struct Shaded {
   Shade shade = Shade::dark;
+  std::optional<Shade> border;
 
   template <typename Archive>
   void visit(Archive& a) {
     a.field("shade", shade, Schema::enumeration(enum_names({Shade::light, Shade::dark})));
+    a.optional("border", border, Schema::enumeration(enum_names({Shade::light, Shade::dark})));
   }
 };
 
@@ -181,4 +186,21 @@ TEST(SettingsArchive, EnumMembersAreReadAndWrittenByTheirNames) {
     EXPECT_EQ(std::string(error.what()),
               "test.yaml:1:9: 'shaded.shade': unknown value 'grey' (allowed: one of light, dark)");
   }
+}
+
+TEST(SettingsArchive, OptionalEnumMembersAreReadByTheirNames) {
+  EXPECT_FALSE(validated<Shaded>("{}").border.has_value());
+  const Shaded given = validated<Shaded>("{shade: light, border: dark}");
+  EXPECT_EQ(given.shade, Shade::light);
+  EXPECT_EQ(given.border, Shade::dark);
+  EXPECT_EQ(validated<Shaded>("{border: light}").border, Shade::light);
+  try {
+    validated<Shaded>("{border: grey}");
+    FAIL() << "no error";
+  } catch (const InputError& error) {
+    EXPECT_EQ(std::string(error.what()),
+              "test.yaml:1:10: 'example.border': unknown value 'grey' (allowed: one of light, dark)");
+  }
+  // Read without validation, a name that is none of the enum's is still refused (the reader's own check).
+  EXPECT_THROW(read_settings<Shaded>(YAML::Load("{shade: dark, border: grey}")), std::invalid_argument);
 }

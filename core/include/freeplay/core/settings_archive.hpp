@@ -9,7 +9,8 @@
 // A std::array member given a `named_map` schema is a value per name (element i under key names[i]; a name a
 // `KeyCoverage::Some` map leaves out reads as zero). `a.section(key, visit_keys)` declares a required sub-map whose
 // keys a lambda lists (for keys that need context, such as a loop over names). `write_settings<T>(settings)` writes
-// a struct back as YAML through the same list (WriteArchive), so each key is named once in the code.
+// a struct back as YAML through the same list (WriteArchive), so each key is named once in the code. A std::optional
+// member (declared with `a.optional`, no default) is read and written as its value type, an enum included.
 
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
@@ -21,6 +22,7 @@
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "freeplay/core/enum_names.hpp"
@@ -139,8 +141,10 @@ class ReadArchive {
         throw std::invalid_argument(fmt::format("'{}' is none of the allowed names (the schema lets it through)",
                                                 node.Scalar()));
       }
-    } else if constexpr (IsOptional<T>::value) {
-      value = node.as<typename T::value_type>();
+    } else if constexpr (IsOptional<T>::value) {  // read as its value type (an enum by its name)
+      typename T::value_type inner{};
+      read(node, inner, schema);
+      value = std::move(inner);
     } else if constexpr (IsStdArray<T>::value) {  // a value per name of its named_map schema
       if (schema == nullptr || schema->kind() != Schema::Kind::Map || schema->fields().size() > value.size()) {
         throw std::logic_error("a std::array setting needs a named_map schema with at most as many names as elements");
