@@ -203,4 +203,7 @@ TEST(SettingsArchive, OptionalEnumMembersAreReadByTheirNames) {
   }
   // Read without validation, a name that is none of the enum's is still refused (the reader's own check).
   EXPECT_THROW(read_settings<Shaded>(YAML::Load("{shade: dark, border: grey}")), std::invalid_argument);
+  // Written back by name through the same list, and left out when empty.
+  EXPECT_EQ(write_settings(given), "shade: light\nborder: dark");
+  EXPECT_EQ(write_settings(Shaded{}), "shade: dark");
 }
