@@ -33,7 +33,7 @@ struct RenderArgs {
   std::string scene = "child-robot";
   std::vector<std::string> cameras;
   bool depth = false;
-  std::string preset = stage::RenderingSettings{}.preset;  // a scenario's default (`rendering.preset`)
+  std::string preset{to_string(stage::RenderingSettings{}.preset)};  // a scenario's default (`rendering.preset`)
   int width = 0;
   int height = 0;
   double age = 7.0;

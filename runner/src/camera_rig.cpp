@@ -77,8 +77,8 @@ std::pair<cv::Size, cv::Size> image_sizes(const stage::StageModel& model, const 
 
 stage::RendererOptions renderer_options(const stage::RenderingSettings& rendering) {
   stage::RendererOptions options;
-  options.backend = rendering.backend.empty() ? stage::default_gl_backend() : stage::gl_backend_from_name(rendering.backend);
-  options.preset = stage::visual_preset_from_name(rendering.preset);
+  options.backend = rendering.backend ? *rendering.backend : stage::default_gl_backend();  // reads $MUJOCO_GL
+  options.preset = rendering.preset;
   return options;
 }
 

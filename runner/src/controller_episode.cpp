@@ -18,6 +18,7 @@
 #include "freeplay/core/statistics.hpp"
 #include "freeplay/planning/move_executor.hpp"
 #include "freeplay/planning/plan.hpp"
+#include "freeplay/runner/controller_settings.hpp"
 #include "freeplay/runner/move_driver.hpp"
 #include "freeplay/runner/sandtray_world.hpp"
 #include "freeplay/runner/versions.hpp"
@@ -37,7 +38,7 @@ namespace {
 
 using stage::kNaoJointCount;
 using stage::NaoJointVector;
-using Target = scenario::ControllerTarget;
+using Target = ControllerTarget;
 
 constexpr double kPhysicsDtS = 0.002;      // the stage's MuJoCo timestep
 constexpr int kControlSteps = 10;          // 20 ms control cycle (ALMotion's DCM/motion cycle)
@@ -523,7 +524,7 @@ class ControllerEpisode {
   }
 
   const scenario::Scenario& scenario_;
-  const scenario::ControllerSpec& spec_;
+  const ControllerSpec& spec_;
   SeedSequence seeds_;
   std::shared_ptr<const stage::StageModel> stage_model_;
   stage::Stage stage_;

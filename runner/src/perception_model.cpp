@@ -4,7 +4,7 @@
 
 namespace freeplay::runner {
 
-PerceptionModel::PerceptionModel(scenario::PerceptionSettings settings, Rng rng) : settings_(settings), rng_(rng) {}
+PerceptionModel::PerceptionModel(PerceptionSettings settings, Rng rng) : settings_(settings), rng_(rng) {}
 
 policies::PerceivedChild PerceptionModel::sense(const ChildTruth& truth) {
   policies::PerceivedChild p;

@@ -153,10 +153,10 @@ std::shared_ptr<const Schema> build_scenario_schema(const ScenarioVocabulary& vo
       with_default("episodes", S::integer(1, 1000000), "1"),
       with_default("seed", S::integer(0, std::numeric_limits<long long>::max()), "1"),
       with_default("children", settings_schema<agents::ChildrenSettings>(), "{}"),
-      with_default("robot", settings_schema<RobotSettings>(vocabulary), "{}"),
+      with_default("robot", settings_schema<runner::RobotSettings>(vocabulary.policies), "{}"),
       with_default("planner", settings_schema<planning::PlannerSettings>(vocabulary.planners), "{}"),
-      with_default("perception", settings_schema<PerceptionSettings>(), "{}"),
-      with_default("protocol", settings_schema<Protocol>(), "{}"),
+      with_default("perception", settings_schema<runner::PerceptionSettings>(), "{}"),
+      with_default("protocol", settings_schema<runner::Protocol>(), "{}"),
       with_default("cameras", S::list(settings_schema<stage::CameraStream>(vocabulary.cameras)), "[]"),
       with_default("rendering", settings_schema<stage::RenderingSettings>(), "{}", "how the cameras are rendered"),
       with_default("record",
@@ -246,10 +246,10 @@ Scenario scenario_from_document(YamlDocument document, const std::vector<std::st
   s.episodes = root["episodes"].as<int>();
   s.seed = root["seed"].as<std::uint64_t>();
   s.children = read_settings<agents::ChildrenSettings>(root["children"]);
-  s.robot = read_settings<RobotSettings>(root["robot"], vocabulary);
+  s.robot = read_settings<runner::RobotSettings>(root["robot"], vocabulary.policies);
   s.planner = read_settings<planning::PlannerSettings>(root["planner"], vocabulary.planners);
-  s.perception = read_settings<PerceptionSettings>(root["perception"]);
-  s.protocol = read_settings<Protocol>(root["protocol"]);
+  s.perception = read_settings<runner::PerceptionSettings>(root["perception"]);
+  s.protocol = read_settings<runner::Protocol>(root["protocol"]);
   for (const auto& c : root["cameras"]) s.cameras.push_back(read_settings<stage::CameraStream>(c, vocabulary.cameras));
   s.rendering = read_settings<stage::RenderingSettings>(root["rendering"]);
   if (const auto& r = root["record"]; r.IsMap()) {

@@ -1,7 +1,10 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <optional>
+#include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "freeplay/core/settings_archive.hpp"
 #include "freeplay/core/yaml_schema.hpp"
@@ -155,13 +158,15 @@ constexpr bool from_string(std::string_view text, Shade& shade) {
   return enum_from_string(text, {Shade::light, Shade::dark}, shade);
 }
 
-/// A settings struct with an enum member.
+/// A settings struct with an enum member and an optional one (absent: nullopt, as `rendering.backend`).
 struct Shaded {
   Shade shade = Shade::dark;
+  std::optional<Shade> border;
 
   template <typename Archive>
   void visit(Archive& a) {
     a.field("shade", shade, Schema::enumeration(enum_names({Shade::light, Shade::dark})));
+    a.optional("border", border, Schema::enumeration(enum_names({Shade::light, Shade::dark})));
   }
 };
 
@@ -279,4 +284,22 @@ TEST(SettingsArchive, ListsAndOptionalStructsAreWrittenBackToTheSameValues) {
   EXPECT_TRUE(again.extras->empty());
   EXPECT_EQ(again.tags, route.tags);
   EXPECT_EQ(again.at, route.at);
+TEST(SettingsArchive, OptionalEnumMembersAreReadByTheirNames) {
+  EXPECT_FALSE(validated<Shaded>("{}").border.has_value());
+  const Shaded given = validated<Shaded>("{shade: light, border: dark}");
+  EXPECT_EQ(given.shade, Shade::light);
+  EXPECT_EQ(given.border, Shade::dark);
+  EXPECT_EQ(validated<Shaded>("{border: light}").border, Shade::light);
+  try {
+    validated<Shaded>("{border: grey}");
+    FAIL() << "no error";
+  } catch (const InputError& error) {
+    EXPECT_EQ(std::string(error.what()),
+              "test.yaml:1:10: 'example.border': unknown value 'grey' (allowed: one of light, dark)");
+  }
+  // Read without validation, a name that is none of the enum's is still refused (the reader's own check).
+  EXPECT_THROW(read_settings<Shaded>(YAML::Load("{shade: dark, border: grey}")), std::invalid_argument);
+  // Written back by name through the same list, and left out when empty.
+  EXPECT_EQ(write_settings(given), "shade: light\nborder: dark");
+  EXPECT_EQ(write_settings(Shaded{}), "shade: dark");
 }

@@ -2,8 +2,10 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <opencv2/core.hpp>
 #include <opencv2/videoio.hpp>
 
@@ -334,11 +336,32 @@ TEST(CameraSchema, BadRenderingAndCameraValuesNameTheAllowedValues) {
   const auto s = scenario_from_document(
       parse_yaml(head + "rendering: {backend: egl, preset: pretty}\ncameras: [{name: env_camera, video: true}]\n",
                  "test.yaml"));
-  EXPECT_EQ(s.rendering.backend, "egl");
-  EXPECT_EQ(s.rendering.preset, "pretty");
+  EXPECT_EQ(s.rendering.backend, stage::GlBackend::egl);
+  EXPECT_EQ(s.rendering.preset, stage::VisualPreset::pretty);
   EXPECT_TRUE(s.cameras.at(0).video);
   const auto defaults = scenario_from_document(parse_yaml(head + "cameras: [{name: env_camera}]\n", "test.yaml"));
-  EXPECT_EQ(defaults.rendering.backend, "");
-  EXPECT_EQ(defaults.rendering.preset, "fast");
+  EXPECT_EQ(defaults.rendering.backend, std::nullopt);
+  EXPECT_EQ(defaults.rendering.preset, stage::VisualPreset::fast);
   EXPECT_FALSE(defaults.cameras.at(0).video);
+}
+
+// The renderer takes the scenario's typed backend and preset; $MUJOCO_GL (else OSMesa) is read only when `rendering`
+// names no backend, so a bad $MUJOCO_GL does not matter to a scenario that names one.
+TEST(CameraRig, RendererOptionsTakeTheScenariosBackendElseMujocoGl) {
+  const char* before = std::getenv("MUJOCO_GL");
+  const std::optional<std::string> saved = before != nullptr ? std::optional<std::string>(before) : std::nullopt;
+  stage::RenderingSettings named;
+  named.backend = stage::GlBackend::egl;
+  named.preset = stage::VisualPreset::pretty;
+  setenv("MUJOCO_GL", "vulkan", 1);
+  const auto options = renderer_options(named);
+  EXPECT_EQ(options.backend, stage::GlBackend::egl);
+  EXPECT_EQ(options.preset, stage::VisualPreset::pretty);
+  EXPECT_THROW(renderer_options(stage::RenderingSettings{}), InputError);  // unnamed: $MUJOCO_GL is read
+  setenv("MUJOCO_GL", "egl", 1);
+  EXPECT_EQ(renderer_options(stage::RenderingSettings{}).backend, stage::GlBackend::egl);
+  unsetenv("MUJOCO_GL");
+  EXPECT_EQ(renderer_options(stage::RenderingSettings{}).backend, stage::GlBackend::osmesa);
+  EXPECT_EQ(renderer_options(stage::RenderingSettings{}).preset, stage::kDefaultVisualPreset);
+  if (saved) setenv("MUJOCO_GL", saved->c_str(), 1);
 }

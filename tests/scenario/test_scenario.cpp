@@ -166,8 +166,8 @@ TEST(Scenario, PinsoroSpellingRoundTrips) {
 TEST(Scenario, EachLeftOutBlockTakesItsLibrarysDefaults) {
   const auto s = parse("name: cc\ncondition: child-child\n");
   EXPECT_EQ(s.rendering, stage::RenderingSettings{});
-  EXPECT_EQ(s.rendering.backend, "");
-  EXPECT_EQ(s.rendering.preset, "fast");
+  EXPECT_EQ(s.rendering.backend, std::nullopt);
+  EXPECT_EQ(s.rendering.preset, stage::VisualPreset::fast);
   EXPECT_FALSE(s.record);
   EXPECT_EQ(s.recording, recording::RecordSettings{});
   EXPECT_EQ(s.recording.jpeg_quality, 90);
@@ -213,8 +213,8 @@ TEST(Scenario, MovedBlocksKeepTheirKeysAndValues) {
   EXPECT_EQ(s.cameras[0].height, 240);
   EXPECT_TRUE(s.cameras[0].depth);
   EXPECT_TRUE(s.cameras[0].video);
-  EXPECT_EQ(s.rendering.backend, "egl");
-  EXPECT_EQ(s.rendering.preset, "pretty");
+  EXPECT_EQ(s.rendering.backend, stage::GlBackend::egl);
+  EXPECT_EQ(s.rendering.preset, stage::VisualPreset::pretty);
   EXPECT_TRUE(s.record);
   EXPECT_EQ(s.recording.jpeg_quality, 50);
   EXPECT_EQ(s.recording.png_level, 9);
@@ -222,6 +222,34 @@ TEST(Scenario, MovedBlocksKeepTheirKeysAndValues) {
   EXPECT_EQ(s.recording.compression, "lz4");
   EXPECT_EQ(s.recording.encoder_threads, 0);
   EXPECT_EQ(s.recording.voice, "espeak");
+}
+
+// `rendering:` reads its names into the renderer's enums (stage/render_names.hpp), and a name that is none of them is
+// an error naming the key and the allowed names.
+TEST(RenderingSettings, ReadsTheNamesIntoTheRenderersEnums) {
+  const auto read = [](const std::string& text) {
+    return read_unvalidated_settings<stage::RenderingSettings>(YAML::Load(text), "rendering");
+  };
+  const auto both = read("{preset: pretty, backend: egl}");
+  EXPECT_EQ(both.preset, stage::VisualPreset::pretty);
+  ASSERT_TRUE(both.backend.has_value());
+  EXPECT_EQ(*both.backend, stage::GlBackend::egl);
+  EXPECT_EQ(read("{backend: osmesa}").backend, stage::GlBackend::osmesa);
+  const auto defaults = read("{}");
+  EXPECT_EQ(defaults.preset, stage::kDefaultVisualPreset);
+  EXPECT_FALSE(defaults.backend.has_value());
+  const auto error_of_rendering = [&](const std::string& text) -> std::string {
+    try {
+      read(text);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "no error";
+  };
+  EXPECT_EQ(error_of_rendering("{preset: bogus}"),
+            "'rendering.preset': unknown value 'bogus' (allowed: one of fast, pretty)");
+  EXPECT_EQ(error_of_rendering("{backend: vulkan}"),
+            "'rendering.backend': unknown value 'vulkan' (allowed: one of osmesa, egl)");
 }
 
 TEST(Scenario, MovedBlocksNameTheKeyAndTheAllowedValues) {

@@ -13,7 +13,8 @@
 // A member that is itself a settings struct, a `std::optional` of one or a `std::vector` of them is read through its
 // own `visit`; its schema is given as `settings_schema<Nested>()` (a list: `Schema::list(settings_schema<Nested>())`,
 // declared with `a.optional` or `a.required`: an absent optional list keeps the member's initialiser). A std::array
-// member given a fixed-length `Schema::list` schema is read and written as that list.
+// member given a fixed-length `Schema::list` schema is read and written as that list. A std::optional member
+// declared with `a.optional` and no default is read and written as its value type, an enum included.
 
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>

@@ -9,7 +9,7 @@
 #include "freeplay/agents/perception.hpp"
 #include "freeplay/core/rng.hpp"
 #include "freeplay/policies/play_policy.hpp"
-#include "freeplay/scenario/settings.hpp"
+#include "freeplay/runner/episode_settings.hpp"
 
 namespace freeplay::runner {
 
@@ -28,13 +28,13 @@ struct ChildTruth {
 class PerceptionModel {
  public:
   /// A model with its own random stream.
-  PerceptionModel(scenario::PerceptionSettings settings, Rng rng);
+  PerceptionModel(PerceptionSettings settings, Rng rng);
   /// The perception the policy gets at time `t` for the truth observed at `t` (delayed by the latency).
   policies::PerceivedChild perceive(const ChildTruth& truth, double t);
 
  private:
   policies::PerceivedChild sense(const ChildTruth& truth);
-  scenario::PerceptionSettings settings_;
+  PerceptionSettings settings_;
   Rng rng_;
   std::deque<std::pair<double, policies::PerceivedChild>> pipeline_;
   std::optional<policies::PerceivedChild> latest_;

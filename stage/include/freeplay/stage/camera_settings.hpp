@@ -3,6 +3,7 @@
 // library that renders them: header-only, so that the scenario parser reads them without linking MuJoCo. Member
 // initialisers are the defaults; `visit` lists the keys, ranges and help (core/settings_archive.hpp).
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,8 +38,8 @@ struct CameraStream {
 
 /// `rendering:` how the cameras are rendered (the renderer's options: renderer.hpp).
 struct RenderingSettings {
-  std::string backend;          ///< "osmesa" | "egl"; empty: $MUJOCO_GL, else osmesa
-  std::string preset{to_string(kDefaultVisualPreset)};  ///< "fast" | "pretty"
+  std::optional<GlBackend> backend;              ///< GL provider; nullopt: $MUJOCO_GL, else osmesa
+  VisualPreset preset = kDefaultVisualPreset;    ///< visual quality
 
   /// Same settings.
   bool operator==(const RenderingSettings&) const = default;
@@ -46,7 +47,8 @@ struct RenderingSettings {
   /// The keys of `rendering:`.
   template <typename Archive>
   void visit(Archive& a) {
-    a.optional("backend", backend, Schema::enumeration(enum_names({GlBackend::osmesa, GlBackend::egl})), "GL provider; default $MUJOCO_GL, else osmesa");
+    a.optional("backend", backend, Schema::enumeration(enum_names({GlBackend::osmesa, GlBackend::egl})),
+               "GL provider; default $MUJOCO_GL, else osmesa");
     a.field("preset", preset, Schema::enumeration(enum_names({VisualPreset::fast, VisualPreset::pretty})),
             "fast: no MSAA/shadows/reflections/skybox; pretty: 4x MSAA, shadows, skybox");
   }
