@@ -284,6 +284,8 @@ TEST(SettingsArchive, ListsAndOptionalStructsAreWrittenBackToTheSameValues) {
   EXPECT_TRUE(again.extras->empty());
   EXPECT_EQ(again.tags, route.tags);
   EXPECT_EQ(again.at, route.at);
+}
+
 TEST(SettingsArchive, OptionalEnumMembersAreReadByTheirNames) {
   EXPECT_FALSE(validated<Shaded>("{}").border.has_value());
   const Shaded given = validated<Shaded>("{shade: light, border: dark}");
