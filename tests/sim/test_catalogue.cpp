@@ -1,5 +1,6 @@
 // The item catalogue: the shipped items match the real game, and bad catalogues are rejected with positions.
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -184,7 +185,7 @@ TEST_F(CatalogueFileTest, StarPolygonIsRejected) {
   std::string star = "polygon: [";
   for (int k = 0; k < 5; ++k) {
     const double a = k * 4.0 * std::numbers::pi / 5.0;
-    star += "[" + std::to_string(0.01 * std::cos(a)) + ", " + std::to_string(0.01 * std::sin(a)) + "]";
+    star += fmt::format("[{}, {}]", 0.01 * std::cos(a), 0.01 * std::sin(a));
     star += k < 4 ? ", " : "]";
   }
   EXPECT_EQ(error_of(with("polygon: octagon", star)).key(), "items[0].polygon");
@@ -194,7 +195,7 @@ TEST_F(CatalogueFileTest, TooManyVerticesForBox2DIsRejected) {
   std::string nine = "polygon: [";
   for (int k = 0; k < 9; ++k) {
     const double a = k * 2.0 * std::numbers::pi / 9.0;
-    nine += "[" + std::to_string(0.01 * std::cos(a)) + ", " + std::to_string(0.01 * std::sin(a)) + "]";
+    nine += fmt::format("[{}, {}]", 0.01 * std::cos(a), 0.01 * std::sin(a));
     nine += k < 8 ? ", " : "]";
   }
   const InputError e = error_of(with("polygon: octagon", nine));
