@@ -44,11 +44,11 @@ constexpr auto kPollBeforeSleep = std::chrono::microseconds(100);
 /// Episode worker threads alive in this process (all Envs and VecEnvs together).
 std::atomic<unsigned> g_live_workers{0};
 
-/// True when the episode workers and the stepping thread fit on the machine's cores: only then does polling pay;
-/// with more threads than cores a polling thread would take the core that the thread it waits for needs.
+/// True when the episode workers fit on the machine's cores: only then does polling pay. The stepping thread is not
+/// counted: while it waits, the workers run, and while they wait, it runs (each poll yields the core between tries).
 bool threads_fit_cores() {
   static const unsigned cores = std::max(1U, std::thread::hardware_concurrency());
-  return g_live_workers.load(std::memory_order_relaxed) + 1 <= cores;
+  return g_live_workers.load(std::memory_order_relaxed) <= cores;
 }
 
 /// Polls `done` (yielding the core between tries) for at most kPollBeforeSleep, when threads fit the cores; true
