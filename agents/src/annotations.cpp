@@ -6,18 +6,10 @@
 #include <algorithm>
 
 #include "freeplay/core/error.hpp"
+#include "freeplay/core/yaml_schema.hpp"
 
 namespace freeplay::agents {
 namespace {
-
-SourceLocation where(const std::string& file, const YAML::Node& node) {
-  SourceLocation loc{file, 0, 0};
-  if (node.IsDefined() && node.Mark().line >= 0) {
-    loc.line = node.Mark().line + 1;
-    loc.column = node.Mark().column + 1;
-  }
-  return loc;
-}
 
 void write_child(std::string& out, const char* key, const ChildTimeline& timeline, double time_base) {
   ChildTimeline sorted = timeline;
@@ -35,16 +27,17 @@ void write_child(std::string& out, const char* key, const ChildTimeline& timelin
 
 ChildTimeline read_child(const YAML::Node& list, const std::string& file, const std::string& key, double time_base) {
   if (list.IsNull()) return {};
-  if (!list.IsSequence()) throw InputError("expected a list of '- <label>: [start, stop]'", key, "", where(file, list));
+  if (!list.IsSequence()) throw InputError("expected a list of '- <label>: [start, stop]'", key, "",
+                                           location_of(list, file));
   ChildTimeline timeline;
   std::size_t index = 0;
   for (const auto& entry : list) {
     const std::string path = fmt::format("{}[{}]", key, index++);
     if (!entry.IsMap() || entry.size() != 1) {
-      throw InputError("expected a single-key map '<label>: [start, stop]'", path, "", where(file, entry));
+      throw InputError("expected a single-key map '<label>: [start, stop]'", path, "", location_of(entry, file));
     }
     const auto kv = *entry.begin();
-    if (!kv.first.IsScalar()) throw InputError("a label must be a name", path, "", where(file, kv.first));
+    if (!kv.first.IsScalar()) throw InputError("a label must be a name", path, "", location_of(kv.first, file));
     const std::string label = kv.first.Scalar();
     if (label == "?") continue;  // the annotator's conflict placeholder carries no state
     const auto parsed = parse_label(label);
@@ -52,11 +45,11 @@ ChildTimeline read_child(const YAML::Node& list, const std::string& file, const 
       throw InputError("unknown label '" + label + "'", path,
                        "goaloriented, aimless, adultseeking, noplay, solitary, onlooker, parallel, associative, "
                        "cooperative, prosocial, adversarial, assertive, frustrated, passive",
-                       where(file, kv.first));
+                       location_of(kv.first, file));
     }
     const YAML::Node span = kv.second;
     if (!span.IsSequence() || span.size() != 2) {
-      throw InputError("expected [start, stop]", path + "." + label, "", where(file, span));
+      throw InputError("expected [start, stop]", path + "." + label, "", location_of(span, file));
     }
     double start = 0.0;
     double stop = 0.0;
@@ -64,9 +57,9 @@ ChildTimeline read_child(const YAML::Node& list, const std::string& file, const 
       start = span[0].as<double>();
       stop = span[1].as<double>();
     } catch (const YAML::Exception&) {
-      throw InputError("start and stop must be numbers (seconds)", path + "." + label, "", where(file, span));
+      throw InputError("start and stop must be numbers (seconds)", path + "." + label, "", location_of(span, file));
     }
-    if (!(stop >= start)) throw InputError("stop is before start", path + "." + label, "", where(file, span));
+    if (!(stop >= start)) throw InputError("stop is before start", path + "." + label, "", location_of(span, file));
     timeline.push_back({parsed->first, static_cast<std::uint8_t>(parsed->second), start - time_base, stop - time_base});
   }
   return timeline;
@@ -90,17 +83,19 @@ SessionAnnotations parse_pinsoro_yaml(std::string_view yaml_text, const std::str
     throw InputError(e.msg, "", "", SourceLocation{file, e.mark.is_null() ? 0 : e.mark.line + 1,
                                                    e.mark.is_null() ? 0 : e.mark.column + 1});
   }
-  if (!root.IsMap()) throw InputError("expected a map with 'purple' and/or 'yellow'", "", "purple, yellow", where(file, root));
+  if (!root.IsMap()) throw InputError("expected a map with 'purple' and/or 'yellow'", "", "purple, yellow",
+                                      location_of(root, file));
   SessionAnnotations result;
   for (const auto& entry : root) {
-    if (!entry.first.IsScalar()) throw InputError("a key must be a name", "", "purple, yellow", where(file, entry.first));
+    if (!entry.first.IsScalar()) throw InputError("a key must be a name", "", "purple, yellow",
+                                                  location_of(entry.first, file));
     const std::string key = entry.first.Scalar();
     if (key == "purple") {
       result.purple = read_child(entry.second, file, key, time_base);
     } else if (key == "yellow") {
       result.yellow = read_child(entry.second, file, key, time_base);
     } else {
-      throw InputError("unknown key", key, "purple, yellow", where(file, entry.first));
+      throw InputError("unknown key", key, "purple, yellow", location_of(entry.first, file));
     }
   }
   return result;

@@ -31,6 +31,7 @@ std::string kind_name(const YAML::Node& node) {
 }  // namespace
 
 SourceLocation location_of(const YAML::Node& node, const std::string& file) {
+  if (!node.IsDefined()) return {file, 0, 0};  // an absent key (or an invalid node) has no position
   const auto mark = node.Mark();
   if (mark.is_null()) return {file, 0, 0};
   return {file, mark.line + 1, mark.column + 1};

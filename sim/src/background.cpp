@@ -15,6 +15,7 @@
 
 #include "freeplay/core/assets.hpp"
 #include "freeplay/core/error.hpp"
+#include "freeplay/core/yaml_schema.hpp"
 #include "freeplay/sim/screen.hpp"
 
 namespace freeplay::sim {
@@ -26,12 +27,6 @@ constexpr int kShiftBits = 4;  // sub-pixel precision of OpenCV drawing calls
 constexpr double kShiftScale = 1 << kShiftBits;
 constexpr int kCurveSamplesPerSegment = 12;
 
-/// Where a YAML node stands in its file (1-based line and column).
-SourceLocation location_of(const std::string& file, const YAML::Node& node) {
-  const YAML::Mark mark = node.Mark();
-  return {file, mark.line >= 0 ? mark.line + 1 : 0, mark.column >= 0 ? mark.column + 1 : 0};
-}
-
 double read_number(const std::string& file, const YAML::Node& node, const std::string& key) {
   try {
     if (!node.IsScalar()) throw YAML::Exception(node.Mark(), "not a scalar");
@@ -39,13 +34,13 @@ double read_number(const std::string& file, const YAML::Node& node, const std::s
     if (!std::isfinite(value)) throw YAML::Exception(node.Mark(), "not finite");
     return value;
   } catch (const YAML::Exception&) {
-    throw InputError("expected a finite number", key, "a number", location_of(file, node));
+    throw InputError("expected a finite number", key, "a number", location_of(node, file));
   }
 }
 
 cv::Point2d read_point(const std::string& file, const YAML::Node& node, const std::string& key) {
   if (!node.IsSequence() || node.size() != 2) {
-    throw InputError("expected a point [x, y]", key, "[x, y] in map units", location_of(file, node));
+    throw InputError("expected a point [x, y]", key, "[x, y] in map units", location_of(node, file));
   }
   return {read_number(file, node[0], key + "[0]"), read_number(file, node[1], key + "[1]")};
 }
@@ -67,14 +62,14 @@ cv::Scalar read_colour(const std::string& file, const YAML::Node& node, const st
     ok = hi >= 0 && lo >= 0;
     rgb[i] = hi * 16 + lo;
   }
-  if (!ok) throw InputError("expected a colour", key, "\"#rrggbb\"", location_of(file, node));
+  if (!ok) throw InputError("expected a colour", key, "\"#rrggbb\"", location_of(node, file));
   return {static_cast<double>(rgb[2]), static_cast<double>(rgb[1]), static_cast<double>(rgb[0])};
 }
 
 const YAML::Node require(const std::string& file, const YAML::Node& map, const std::string& name,
                          const std::string& key_prefix) {
   const YAML::Node child = map[name];
-  if (!child) throw InputError("missing key", key_prefix + name, {}, location_of(file, map));
+  if (!child) throw InputError("missing key", key_prefix + name, {}, location_of(map, file));
   return child;
 }
 
@@ -85,13 +80,13 @@ void reject_unknown_keys(const std::string& file, const YAML::Node& map, const s
     if (std::find(allowed.begin(), allowed.end(), name) == allowed.end()) {
       std::string list;
       for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-      throw InputError("unknown key", key_prefix + name, list, location_of(file, kv.first));
+      throw InputError("unknown key", key_prefix + name, list, location_of(kv.first, file));
     }
   }
 }
 
 MapShape read_shape(const std::string& file, const YAML::Node& node, const std::string& key) {
-  if (!node.IsMap()) throw InputError("expected a shape mapping", key, {}, location_of(file, node));
+  if (!node.IsMap()) throw InputError("expected a shape mapping", key, {}, location_of(node, file));
   reject_unknown_keys(file, node,
                       {"type", "layer", "fill", "stroke", "width", "points", "centre", "radii", "angle", "smooth"},
                       key + ".");
@@ -106,33 +101,34 @@ MapShape read_shape(const std::string& file, const YAML::Node& node, const std::
     shape.kind = MapShape::Kind::Polyline;
   } else {
     throw InputError("unknown shape type '" + type_name + "'", key + ".type", "polygon, ellipse, polyline",
-                     location_of(file, type));
+                     location_of(type, file));
   }
   if (const YAML::Node layer = node["layer"]) shape.layer = layer.as<std::string>();
   if (const YAML::Node smooth = node["smooth"]) {
     try {
       shape.smooth = smooth.as<bool>();
     } catch (const YAML::Exception&) {
-      throw InputError("expected true or false", key + ".smooth", "true, false", location_of(file, smooth));
+      throw InputError("expected true or false", key + ".smooth", "true, false", location_of(smooth, file));
     }
   }
   if (shape.kind == MapShape::Kind::Polyline) {
     shape.bgr = read_colour(file, require(file, node, "stroke", key + "."), key + ".stroke");
     const YAML::Node width = require(file, node, "width", key + ".");
     shape.width = read_number(file, width, key + ".width");
-    if (shape.width <= 0.0) throw InputError("must be positive", key + ".width", "> 0", location_of(file, width));
+    if (shape.width <= 0.0) throw InputError("must be positive", key + ".width", "> 0", location_of(width, file));
   } else {
     shape.bgr = read_colour(file, require(file, node, "fill", key + "."), key + ".fill");
     if (const YAML::Node width = node["width"]) {
       shape.width = read_number(file, width, key + ".width");  // ellipse outline (rings)
-      if (shape.width < 0.0) throw InputError("must not be negative", key + ".width", ">= 0", location_of(file, width));
+      if (shape.width < 0.0) throw InputError("must not be negative", key + ".width", ">= 0", location_of(width, file));
     }
   }
   if (shape.kind == MapShape::Kind::Ellipse) {
     shape.points = {read_point(file, require(file, node, "centre", key + "."), key + ".centre")};
     const YAML::Node radii = require(file, node, "radii", key + ".");
     const cv::Point2d r = read_point(file, radii, key + ".radii");
-    if (r.x <= 0.0 || r.y <= 0.0) throw InputError("radii must be positive", key + ".radii", "> 0", location_of(file, radii));
+    if (r.x <= 0.0 || r.y <= 0.0) throw InputError("radii must be positive", key + ".radii", "> 0",
+                                                   location_of(radii, file));
     shape.radii = {r.x, r.y};
     if (const YAML::Node angle = node["angle"]) shape.angle_deg = read_number(file, angle, key + ".angle");
   } else {
@@ -140,7 +136,7 @@ MapShape read_shape(const std::string& file, const YAML::Node& node, const std::
     const std::size_t needed = shape.kind == MapShape::Kind::Polygon ? 3 : 2;
     if (!points.IsSequence() || points.size() < needed) {
       throw InputError("needs at least " + std::to_string(needed) + " points", key + ".points", "[[x, y], ...]",
-                       location_of(file, points));
+                       location_of(points, file));
     }
     for (std::size_t i = 0; i < points.size(); ++i) {
       shape.points.push_back(read_point(file, points[i], key + ".points[" + std::to_string(i) + "]"));
@@ -249,19 +245,19 @@ MapDescription MapDescription::load(const std::filesystem::path& path) {
   } catch (const YAML::ParserException& e) {
     throw InputError("YAML syntax error: " + e.msg, {}, {}, {file, e.mark.line + 1, e.mark.column + 1});
   }
-  if (!root.IsMap()) throw InputError("expected a mapping at the top level", {}, {}, location_of(file, root));
+  if (!root.IsMap()) throw InputError("expected a mapping at the top level", {}, {}, location_of(root, file));
   reject_unknown_keys(file, root, {"name", "size", "background", "shapes"}, "");
   MapDescription map;
   if (const YAML::Node name = root["name"]) map.name = name.as<std::string>();
   const YAML::Node size = require(file, root, "size", "");
   const cv::Point2d extent = read_point(file, size, "size");
   if (extent.x <= 0.0 || extent.y <= 0.0) {
-    throw InputError("size must be positive", "size", "[width > 0, height > 0]", location_of(file, size));
+    throw InputError("size must be positive", "size", "[width > 0, height > 0]", location_of(size, file));
   }
   map.size = {extent.x, extent.y};
   map.background_bgr = read_colour(file, require(file, root, "background", ""), "background");
   if (const YAML::Node shapes = root["shapes"]) {
-    if (!shapes.IsSequence()) throw InputError("expected a list of shapes", "shapes", {}, location_of(file, shapes));
+    if (!shapes.IsSequence()) throw InputError("expected a list of shapes", "shapes", {}, location_of(shapes, file));
     for (std::size_t i = 0; i < shapes.size(); ++i) {
       map.shapes.push_back(read_shape(file, shapes[i], "shapes[" + std::to_string(i) + "]"));
     }

@@ -237,18 +237,12 @@ class WriteArchive {
       } else {
         out_ << YAML::Null;
       }
-    } else if constexpr (IsVector<T>::value) {  // a list: numbers on one line, structs as blocks
-      if constexpr (std::is_arithmetic_v<typename T::value_type>) out_ << YAML::Flow;
-      out_ << YAML::BeginSeq;
-      for (auto& element : value) write(element, schema != nullptr ? schema->element() : nullptr);
-      out_ << YAML::EndSeq;
+    } else if constexpr (IsVector<T>::value) {
+      write_list(value, schema);
     } else if constexpr (IsStdArray<T>::value) {
       using Element = typename T::value_type;
       if (schema != nullptr && schema->kind() == Schema::Kind::List) {  // a fixed-length list
-        if constexpr (std::is_arithmetic_v<Element>) out_ << YAML::Flow;
-        out_ << YAML::BeginSeq;
-        for (auto& element : value) write(element, schema->element());
-        out_ << YAML::EndSeq;
+        write_list(value, schema);
         return;
       }
       if (schema == nullptr || schema->kind() != Schema::Kind::Map || schema->fields().size() > value.size()) {
@@ -270,6 +264,14 @@ class WriteArchive {
     } else {
       out_ << value;
     }
+  }
+  // A list: numbers on one line, structs as blocks.
+  template <typename List>
+  void write_list(List& list, const Schema* schema) {
+    if constexpr (std::is_arithmetic_v<typename List::value_type>) out_ << YAML::Flow;
+    out_ << YAML::BeginSeq;
+    for (auto& element : list) write(element, schema != nullptr ? schema->element() : nullptr);
+    out_ << YAML::EndSeq;
   }
   YAML::Emitter& out_;
 };
