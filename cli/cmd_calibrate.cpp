@@ -31,14 +31,14 @@ struct CalibrateOptions {
   bool json = false;
   bool fit = false;
   int threads = 1;
-  int rounds = 3;
-  int evaluations = 60;
+  int rounds = 4;
   int fit_sessions = 120;
   bool full = false;
   bool check = false;
   std::string cc_scenario;
   std::string cr_scenario;
   std::vector<std::string> policies;
+  std::vector<std::string> fit_only;
 };
 
 /// A shipped scenario: `name` in ./scenarios, else beside the assets folder (the repository's scenarios/).
@@ -46,6 +46,16 @@ std::filesystem::path shipped_scenario(const std::string& name) {
   const std::filesystem::path local = std::filesystem::path("scenarios") / name;
   if (std::filesystem::exists(local)) return local;
   return asset_path(".").parent_path().parent_path() / "scenarios" / name;
+}
+
+/// The child-child scenario of `--full` (`--cc-scenario`, else the shipped one).
+std::filesystem::path cc_scenario_file(const CalibrateOptions& o) {
+  return o.cc_scenario.empty() ? shipped_scenario("child-child.yaml") : std::filesystem::path(o.cc_scenario);
+}
+
+/// The child-robot scenario of `--full` (`--cr-scenario`, else the shipped asocial one).
+std::filesystem::path cr_scenario_file(const CalibrateOptions& o) {
+  return o.cr_scenario.empty() ? shipped_scenario("child-robot-asocial.yaml") : std::filesystem::path(o.cr_scenario);
 }
 
 /// Runs `episodes` full episodes of a scenario (with `overrides`), printing progress on stderr.
@@ -105,17 +115,31 @@ void run_calibrate(const CalibrateOptions& o) {
     fit.sessions = o.fit_sessions;
     fit.seed = o.seed;
     fit.rounds = o.rounds;
-    fit.duration_evaluations = o.evaluations;
     fit.threads = o.threads;
     fit.log = [](const std::string& line) { spdlog::info("fit: {}", line); };
+    fit.only = o.fit_only;
+    if (o.full) {
+      // Fit on the product itself: every evaluation runs full episodes of both scenarios on the fit seed.
+      fit.simulate = [&o](const agents::ChildModelParams& trial) {
+        runner::SharedModels models = runner::SharedModels::shipped();
+        models.child_params = std::make_shared<const agents::ChildModelParams>(trial);
+        return std::pair{agents::summarise(full_population(cc_scenario_file(o), {}, o.fit_sessions, o.seed,
+                                                           o.threads, models),
+                                           agents::Condition::ChildChild),
+                         agents::summarise(full_population(cr_scenario_file(o), {}, o.fit_sessions, o.seed,
+                                                           o.threads, models),
+                                           agents::Condition::ChildRobot)};
+      };
+    }
     const agents::FitResult result = agents::fit_child_model(params, fit);
     params = result.params;
     const std::filesystem::path out = o.output.empty() ? params_path : std::filesystem::path(o.output);
     const std::string header = fmt::format(
         "Synthetic child model (freeplay::agents), fitted by `freeplay calibrate --fit` (seed {}, {} sessions per\n"
-        "condition per evaluation, {} rounds). Duration loss {:.3f} -> {:.3f}; label loss {:.3f} -> {:.3f}.",
-        o.seed, o.fit_sessions, o.rounds, result.duration_loss_before, result.duration_loss_after,
-        result.label_loss_before, result.label_loss_after);
+        "condition per evaluation, {} rounds of the coordinate search). Fit loss {:.2f} -> {:.2f}; checked rows\n"
+        "outside their bands on the fit seed {} -> {}.",
+        o.seed, o.fit_sessions, o.rounds, result.loss_before, result.loss_after, result.outside_before,
+        result.outside_after);
     write_file_atomically(out, agents::child_model_params_to_yaml(params, header));
     spdlog::info("wrote fitted parameters to {}", out.string());
   }
@@ -126,9 +150,8 @@ void run_calibrate(const CalibrateOptions& o) {
   if (o.full) {
     runner::SharedModels models = runner::SharedModels::shipped();
     models.child_params = std::make_shared<const agents::ChildModelParams>(params);
-    const std::filesystem::path cc_file = o.cc_scenario.empty() ? shipped_scenario("child-child.yaml") : std::filesystem::path(o.cc_scenario);
-    const std::filesystem::path cr_file =
-        o.cr_scenario.empty() ? shipped_scenario("child-robot-asocial.yaml") : std::filesystem::path(o.cr_scenario);
+    const std::filesystem::path cc_file = cc_scenario_file(o);
+    const std::filesystem::path cr_file = cr_scenario_file(o);
     if (o.condition != "cr") {
       cc = agents::summarise(full_population(cc_file, {}, o.sessions, o.seed, o.threads, models), agents::Condition::ChildChild);
     }
@@ -205,13 +228,16 @@ const RegisterCommand kRegister(60, [](CLI::App& program) {
   cmd->add_flag("--json", options->json, "Print JSON instead of a table");
   cmd->add_flag("--fit", options->fit, "Run the fitting procedure first and write the fitted parameters");
   cmd->add_option("--output", options->output, "Where --fit writes (default: the --params file)");
-  cmd->add_option("--rounds", options->rounds, "Fit: outer rounds")->capture_default_str();
-  cmd->add_option("--evaluations", options->evaluations, "Fit: Nelder–Mead evaluations per round")
+  cmd->add_option("--rounds", options->rounds, "Fit: sweeps of the coordinate search over the fitted parameters")
       ->capture_default_str();
   cmd->add_option("--fit-sessions", options->fit_sessions, "Fit: sessions per condition per evaluation")
       ->capture_default_str();
+  cmd->add_option("--fit-only", options->fit_only,
+                  "Fit: move only these fitted parameters (e.g. drives.decay_per_min "
+                  "expression.noplay_speech_share; a wrong name lists them all); default: all of them");
   cmd->add_flag("--full", options->full,
-                "Run full episodes (sandtray, policies, planner, robot) instead of the logic-only simulator");
+                "Run full episodes (sandtray, policies, planner, robot) instead of the logic-only simulator; with "
+                "--fit, every fit evaluation runs --fit-sessions full episodes per condition on --seed");
   cmd->add_flag("--check", options->check, "Exit with status 1 when a checked row lies outside its PInSoRo bound");
   cmd->add_option("--cc-scenario", options->cc_scenario, "--full: child-child scenario (default scenarios/child-child.yaml)");
   cmd->add_option("--cr-scenario", options->cr_scenario,

@@ -39,6 +39,9 @@ constexpr std::array<std::array<double, 5>, 5> kSocialTransitionTarget = {{
 }};
 constexpr std::array<double, kAxisCount> kChangesPerMinTarget = {1.54, 1.00, 1.62};
 
+/// Half-width of a label share's acceptance band: ±.05 for common labels, half the target for rare ones (so that
+/// a rare label such as `adversarial` (.012) can fail low as well as high), never below ±.01.
+double share_half_width(double target) { return std::clamp(0.5 * target, 0.01, 0.05); }
 constexpr double kShareTolerance = 0.05;
 /// §8: P(same social label) and cooperative+cooperative share, with the bands of our calibration check.
 constexpr double kDyadSameTarget = 0.876;
@@ -128,12 +131,6 @@ class DyadCoupling {
   std::array<long, kMaxLabels> pair_{};
 };
 
-std::vector<double> duration_terms(const DurationStats& s, const DurationTarget& t) {
-  return {(s.mean_min - t.mean) / (0.1 * t.mean), (s.sd_min - t.sd) / (0.25 * t.sd),
-          (s.survival[1] - t.survival[1]) / 0.1, (s.survival[2] - t.survival[2]) / 0.1,
-          (s.survival[3] - t.survival[3]) / 0.1};
-}
-
 void add_duration_rows(std::vector<ComparisonRow>& rows, const std::string& group, const DurationStats& s,
                        const DurationTarget& t) {
   rows.push_back({group, "mean (min)", s.mean_min, t.mean, 0.9 * t.mean, 1.1 * t.mean, true});
@@ -161,91 +158,6 @@ void add_behaviour_rows(std::vector<ComparisonRow>& rows, const std::string& gro
   rows.push_back({group, "items taken from the child / min", l.items_taken_per_min, 0, 0, 0, false});
   rows.push_back({group, "contingent responses / min", l.contingent_per_min, 0, 0, 0, false});
   rows.push_back({group, "unanswered bids / min", l.unanswered_bids_per_min, 0, 0, 0, false});
-}
-
-/// Nelder–Mead minimisation of `f` from `x0` with initial step `step`, at most `max_evals` evaluations.
-std::vector<double> nelder_mead(const std::function<double(const std::vector<double>&)>& f, std::vector<double> x0,
-                                double step, int max_evals, double& best_value) {
-  const std::size_t n = x0.size();
-  std::vector<std::vector<double>> simplex(n + 1, x0);
-  std::vector<double> values(n + 1);
-  for (std::size_t i = 0; i < n; ++i) simplex[i + 1][i] += step;
-  int evals = 0;
-  for (std::size_t i = 0; i <= n; ++i) {
-    values[i] = f(simplex[i]);
-    ++evals;
-  }
-  while (evals < max_evals) {
-    std::vector<std::size_t> order(n + 1);
-    for (std::size_t i = 0; i <= n; ++i) order[i] = i;
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return values[a] < values[b]; });
-    const std::size_t best = order.front();
-    const std::size_t worst = order.back();
-    const std::size_t second = order[n - 1];
-    std::vector<double> centroid(n, 0.0);
-    for (std::size_t i = 0; i <= n; ++i) {
-      if (i == worst) continue;
-      for (std::size_t k = 0; k < n; ++k) centroid[k] += simplex[i][k] / static_cast<double>(n);
-    }
-    const auto blend = [&](double a) {
-      std::vector<double> x(n);
-      for (std::size_t k = 0; k < n; ++k) x[k] = centroid[k] + a * (simplex[worst][k] - centroid[k]);
-      return x;
-    };
-    const std::vector<double> reflected = blend(-1.0);
-    const double fr = f(reflected);
-    ++evals;
-    if (fr < values[best]) {
-      const std::vector<double> expanded = blend(-2.0);
-      const double fe = f(expanded);
-      ++evals;
-      if (fe < fr) {
-        simplex[worst] = expanded;
-        values[worst] = fe;
-      } else {
-        simplex[worst] = reflected;
-        values[worst] = fr;
-      }
-    } else if (fr < values[second]) {
-      simplex[worst] = reflected;
-      values[worst] = fr;
-    } else {
-      const std::vector<double> contracted = blend(0.5);
-      const double fc = f(contracted);
-      ++evals;
-      if (fc < values[worst]) {
-        simplex[worst] = contracted;
-        values[worst] = fc;
-      } else {  // shrink towards the best vertex
-        for (std::size_t i = 0; i <= n && evals < max_evals; ++i) {
-          if (i == best) continue;
-          for (std::size_t k = 0; k < n; ++k) simplex[i][k] = simplex[best][k] + 0.5 * (simplex[i][k] - simplex[best][k]);
-          values[i] = f(simplex[i]);
-          ++evals;
-        }
-      }
-    }
-  }
-  const auto it = std::min_element(values.begin(), values.end());
-  best_value = *it;
-  return simplex[static_cast<std::size_t>(it - values.begin())];
-}
-
-/// The duration-stage parameters, as log values.
-std::vector<double> duration_vector(const ChildModelParams& p) {
-  const DriveParams& d = p.drives;
-  return {std::log(d.decay_per_min),   std::log(d.contingency_gain),      std::log(d.boredom_rate_per_min),
-          std::log(d.quit_hazard_per_min), std::log(d.unanswered_bid_drop), std::log(d.partner_quit_factor)};
-}
-
-void apply_duration_vector(const std::vector<double>& x, ChildModelParams& p) {
-  DriveParams& d = p.drives;
-  d.decay_per_min = std::clamp(std::exp(x[0]), 1e-4, 100.0);
-  d.contingency_gain = std::clamp(std::exp(x[1]), 1e-5, 1.0);
-  d.boredom_rate_per_min = std::clamp(std::exp(x[2]), 1e-5, 100.0);
-  d.quit_hazard_per_min = std::clamp(std::exp(x[3]), 1e-6, 100.0);
-  d.unanswered_bid_drop = std::clamp(std::exp(x[4]), 1e-5, 1.0);
-  d.partner_quit_factor = std::clamp(std::exp(x[5]), 1.0, 1e6);
 }
 
 }  // namespace
@@ -372,8 +284,8 @@ std::vector<ComparisonRow> compare_with_targets(const PopulationStats* cc, const
       const std::string group = fmt::format("cc share {}", axis_name(axis));
       for (std::size_t j = 0; j < label_count(axis); ++j) {
         const double t = kShareTarget[a][j];
-        rows.push_back({group, std::string(label_name(axis, j)), cc->labels.share[a][j], t, t - kShareTolerance,
-                        t + kShareTolerance, true});
+        rows.push_back({group, std::string(label_name(axis, j)), cc->labels.share[a][j], t,
+                        t - share_half_width(t), t + share_half_width(t), true});
       }
     }
     for (const Axis axis : kAxes) {
@@ -421,6 +333,13 @@ std::vector<ComparisonRow> compare_with_targets(const PopulationStats* cc, const
   }
   if (cr) {
     add_duration_rows(rows, "cr duration", cr->duration, kCrDuration);
+    // Bouts as a person codes them, from the same rules in every condition; PInSoRo's child-child rates for scale
+    // (there is no child-robot target).
+    for (const Axis axis : kAxes) {
+      const auto a = static_cast<std::size_t>(axis);
+      rows.push_back({"cr label changes per min", std::string(axis_name(axis)), cr->labels.changes_per_min[a],
+                      kChangesPerMinTarget[a], 0, 0, false});
+    }
     add_agreement_rows(rows, "cr coder", cr->labels);
     add_behaviour_rows(rows, "cr behaviour", cr->labels);
   }
@@ -437,92 +356,6 @@ std::string format_comparison(const std::vector<ComparisonRow>& rows) {
                        mark);
   }
   return out;
-}
-
-double duration_loss(const PopulationStats& cc, const PopulationStats& cr) {
-  double loss = 0.0;
-  for (double term : duration_terms(cc.duration, kCcDuration)) loss += term * term;
-  for (double term : duration_terms(cr.duration, kCrDuration)) loss += term * term;
-  return loss;
-}
-
-double label_loss(const PopulationStats& cc) {
-  double loss = 0.0;
-  for (const Axis axis : kAxes) {
-    const auto a = static_cast<std::size_t>(axis);
-    for (std::size_t j = 0; j < label_count(axis); ++j) {
-      const double ds = (cc.labels.share[a][j] - kShareTarget[a][j]) / kShareTolerance;
-      const double sim_median = std::max(cc.labels.bout_median_s[a][j], 0.1);
-      const double dm = std::log(sim_median / kBoutMedianTarget[a][j]) / std::log(kBoutFactor);
-      loss += ds * ds + dm * dm;
-    }
-  }
-  return loss;
-}
-
-FitResult fit_child_model(const ChildModelParams& start, const FitOptions& options) {
-  FitResult result;
-  result.params = start;
-  ChildModelParams& p = result.params;
-  const auto log = [&](const std::string& line) {
-    if (options.log) options.log(line);
-  };
-  const auto run = [&](const ChildModelParams& params, Condition condition) {
-    result.simulations += options.sessions;
-    return summarise(simulate_population(params, condition, options.sessions, options.seed, options.threads),
-                     condition);
-  };
-
-  PopulationStats cc = run(p, Condition::ChildChild);
-  PopulationStats cr = run(p, Condition::ChildRobot);
-  result.duration_loss_before = duration_loss(cc, cr);
-  result.label_loss_before = label_loss(cc);
-  log(fmt::format("start: duration loss {:.3f}, label loss {:.3f}", result.duration_loss_before,
-                  result.label_loss_before));
-
-  for (int round = 0; round < options.rounds; ++round) {
-    // Label stage: multiplicative moment matching (damped), shares → transition biases, bout medians → dwell medians.
-    constexpr double kStep = 0.7;
-    for (int it = 0; it < options.label_iterations; ++it) {
-      for (const Axis axis : kAxes) {
-        const auto a = static_cast<std::size_t>(axis);
-        AxisModel& m = p.axis(axis);
-        double mean_bias = 0.0;
-        for (std::size_t j = 0; j < label_count(axis); ++j) {
-          const double sim_share = std::max(cc.labels.share[a][j], 1e-3);
-          const double step = axis == Axis::SocialEngagement ? 0.5 * kStep : kStep;  // coded: an indirect response
-          m.bias[j] = std::clamp(m.bias[j] + step * std::log(kShareTarget[a][j] / sim_share), -15.0, 15.0);
-          mean_bias += m.bias[j] / static_cast<double>(label_count(axis));
-          // Coded social bouts last as the coder's rules make them: the child's dwell times are not matched to them.
-          if (cc.labels.bouts[a][j] >= 5 && axis != Axis::SocialEngagement) {
-            const double ratio = kBoutMedianTarget[a][j] / std::max(cc.labels.bout_median_s[a][j], 0.1);
-            m.dwell_median_s[j] = std::clamp(m.dwell_median_s[j] * std::pow(ratio, kStep), 0.5, 3600.0);
-          }
-        }
-        for (std::size_t j = 0; j < label_count(axis); ++j) m.bias[j] -= mean_bias;
-      }
-      cc = run(p, Condition::ChildChild);
-      log(fmt::format("round {} label iteration {}: label loss {:.3f}", round + 1, it + 1, label_loss(cc)));
-    }
-    // Duration stage: Nelder–Mead on the drive/hazard log-parameters, CC and CR jointly, same seeds every time.
-    double best = 0.0;
-    const auto objective = [&](const std::vector<double>& x) {
-      ChildModelParams trial = p;
-      apply_duration_vector(x, trial);
-      const double loss = duration_loss(run(trial, Condition::ChildChild), run(trial, Condition::ChildRobot));
-      return loss;
-    };
-    const std::vector<double> x = nelder_mead(objective, duration_vector(p), round == 0 ? 0.5 : 0.25,
-                                              options.duration_evaluations, best);
-    apply_duration_vector(x, p);
-    cc = run(p, Condition::ChildChild);
-    cr = run(p, Condition::ChildRobot);
-    log(fmt::format("round {} duration stage: duration loss {:.3f}, label loss {:.3f}", round + 1,
-                    duration_loss(cc, cr), label_loss(cc)));
-  }
-  result.duration_loss_after = duration_loss(cc, cr);
-  result.label_loss_after = label_loss(cc);
-  return result;
 }
 
 }  // namespace freeplay::agents

@@ -53,12 +53,11 @@ int habitat_colours(int item, std::array<PaletteColour, 4>& out) {
 }  // namespace
 
 ChildAgent::ChildAgent(const ChildModelParams& params, const ChildProfile& profile, Seat seat, Rng rng)
-    : params_(&params), profile_(profile), seat_(seat), rng_(rng) {
+    : params_(&params), profile_(profile), seat_(seat), rng_(rng), contingency_(params.contingency) {
   profile_.validate();
   const DriveParams& d = params_->drives;
   motivation_ = std::clamp(rng_.normal(d.initial_motivation_mean, d.initial_motivation_sd), 0.05, 1.0);
   decay_scale_ = std::exp(-d.attention_effect * (2.0 * profile_.attention_span - 1.0));
-  expectation_ = params_->partnership.expectation_prior;
   prev_holder_.fill(HolderView::Nobody);
   mine_until_.fill(-1.0);
   timeline_.reserve(256);
@@ -75,7 +74,6 @@ double ChildAgent::feature(Feature f) const {
     case Feature::PartnerActive: return partner_active_;
     case Feature::PartnerJoint: return partner_joint_;
     case Feature::PartnerAttention: return partner_attention_;
-    case Feature::PartnerRobot: return 0.0;  // set through partner_robot_ below
     case Feature::Grievance: return grievance_;
     case Feature::TaskNoPlay: return labels_.task == TaskEngagement::NoPlay ? 1.0 : 0.0;
     case Feature::Together:
@@ -116,6 +114,7 @@ void ChildAgent::observe(double t, double dt, const ChildPerception& seen) {
   const ReactionParams& r = params_->reactions;
   const PartnerView& partner = seen.partner;
   const double w_att = ema_weight(dt, params_->drives.attention_tau_s);
+  contingency_.advance(t, dt);
 
   int taken_item = -1;
   // Items: who holds what; an item I placed recently that the partner grabs counts as taken from me.
@@ -137,22 +136,46 @@ void ChildAgent::observe(double t, double dt, const ChildPerception& seen) {
     prev_holder_[k] = item.holder;
   }
 
-  // Partner's touches: activity level and onsets near my play.
   partner_active_ += w_att * ((partner.touch_count > 0 ? 1.0 : 0.0) - partner_active_);
   partner_joint_ -= w_att * partner_joint_;
   partner_attention_ -= w_att * partner_attention_;
+  observe_partner_acts(t, partner, taken_item);
+  // A partner who wants to stop is heard saying so (to the experimenter, but audibly).
+  if (partner.speech && partner.speech->kind == Utterance::AnnounceStop) partner_quit_ = true;
+
+  for (int n = contingency_.take_unanswered(); n > 0; --n) {
+    ++counters_.unanswered_bids;
+    motivation_ -= params_->drives.unanswered_bid_drop * motivation_;
+    // "Frustrated: reluctant or refusing to engage ... because of a perceived lack of fairness or attention from
+    // their peer" (the coding scheme): a bid left unanswered may make the child frustrated (it protests).
+    if (labels_.attitude != SocialAttitude::Frustrated && !quit_ &&
+        rng_.bernoulli(params_->reactions.unanswered_frustration_probability)) {
+      switch_label(Axis::SocialAttitude, static_cast<std::size_t>(SocialAttitude::Frustrated), t);
+    }
+  }
+  counters_.bids_answered += contingency_.take_answered();
+  counters_.contingency_s += dt * contingency_.contingency();
+  counters_.answered_share_s += dt * contingency_.answered_share();
+  counters_.base_share_s += dt * contingency_.base_share();
+}
+
+void ChildAgent::observe_partner_acts(double t, const PartnerView& partner, int taken_item) {
+  const ContingencyParams& c = params_->contingency;
+  const ReactionParams& r = params_->reactions;
+  // The partner's touches: a finger landing on my item or in my area answers my act when it follows it in time.
   if (partner.touch_count > prev_partner_touches_ && partner.touch_count > 0) {
     const SeenTouch& touch = partner.touches[static_cast<std::size_t>(partner.touch_count - 1)];
-    const bool near_my_play = (touch.point - my_last_point_).norm() < r.react_distance_m;
-    const bool on_my_item = touch.item >= 0 && touch.item == my_last_item_;
     const bool taken = touch.item >= 0 && touch.item == taken_item;
-    if (!taken && (near_my_play || on_my_item) && t - my_last_action_t_ < r.react_window_s) {
-      // A joint act answers me only from a partner who attends to me; an indifferent one merely plays nearby.
-      if (partner_attention_ > 0.1) last_answered_t_ = t;
-      on_contingent(r.act_weight);
+    const ActClass kind = contingency_.on_partner_act(t, PartnerActKind::TouchMyPlay, touch.item, touch.point);
+    if (!taken && kind == ActClass::Response) {
+      on_response(t, r.act_weight);
       on_partner_bid(t, /*joint=*/true, /*spoken=*/false);
       partner_joint_ = std::min(1.0, partner_joint_ + 0.35);
-    } else if ((touch.point - my_last_point_).norm() < 2.0 * r.react_distance_m) {
+    } else if (!taken && kind == ActClass::Spontaneous) {
+      // The partner joins my play unasked: its own bid, which I may take up.
+      on_partner_bid(t, /*joint=*/true, /*spoken=*/false);
+      partner_joint_ = std::min(1.0, partner_joint_ + 0.15);
+    } else if ((touch.point - my_last_point_).norm() < 2.0 * c.about_distance_m) {
       partner_joint_ = std::min(1.0, partner_joint_ + 0.15);
     }
     partner_last_item_ = touch.item;
@@ -169,38 +192,66 @@ void ChildAgent::observe(double t, double dt, const ChildPerception& seen) {
   }
   prev_partner_touches_ = partner.touch_count;
 
+  // The partner's gaze: landing on my face, or on what I play with (joint attention).
   const bool looking = partner.gaze.kind == GazeKind::PartnerFace;
   if (looking && !prev_partner_looking_) {
-    last_answered_t_ = t;
-    on_contingent(r.look_weight);
-    on_partner_bid(t, /*joint=*/false, /*spoken=*/false);
-    partner_attention_ = std::min(1.0, partner_attention_ + 0.25);
+    if (contingency_.on_partner_act(t, PartnerActKind::LookAtMe, -1, my_last_point_) == ActClass::Response) {
+      on_response(t, r.look_weight);
+      on_partner_bid(t, /*joint=*/false, /*spoken=*/false);
+      partner_attention_ = std::min(1.0, partner_attention_ + 0.25);
+    } else {
+      on_attention(r.look_weight);
+      on_partner_bid(t, /*joint=*/false, /*spoken=*/false);
+    }
   }
   prev_partner_looking_ = looking;
-  if (partner.speech && partner.speech->to == Addressee::Partner) {
-    last_answered_t_ = t;
-    on_contingent(r.talk_weight);
-    on_partner_bid(t, /*joint=*/partner.speech->kind == Utterance::Proposal, /*spoken=*/true);
-    partner_attention_ = std::min(1.0, partner_attention_ + 0.35);
+  const int gaze_item = partner.gaze.kind == GazeKind::Item ? partner.gaze.item : -1;
+  if (gaze_item >= 0 && gaze_item != prev_partner_gaze_item_ &&
+      contingency_.on_partner_act(t, PartnerActKind::LookAtMyPlay, gaze_item, partner.gaze.point) ==
+          ActClass::Response) {
+    on_response(t, 0.5 * r.look_weight);
   }
-  if (partner.wants_to_stop) partner_quit_ = true;
+  prev_partner_gaze_item_ = gaze_item;
 
-  if (bid_pending_ && t >= bid_deadline_) {
-    bid_pending_ = false;
-    ++counters_.unanswered_bids;
-    motivation_ -= params_->drives.unanswered_bid_drop * motivation_;
-    expectation_ -= params_->partnership.expectation_rate * expectation_;
+  // The partner's words to me.
+  if (partner.speech && partner.speech->to == Addressee::Partner) {
+    const bool proposal = partner.speech->kind == Utterance::Proposal;
+    if (contingency_.on_partner_act(t, PartnerActKind::TalkToMe, -1, my_last_point_) == ActClass::Response) {
+      on_response(t, r.talk_weight);
+      on_partner_bid(t, proposal, /*spoken=*/true);
+      partner_attention_ = std::min(1.0, partner_attention_ + 0.35);
+    } else {
+      on_attention(r.talk_weight);
+      on_partner_bid(t, proposal, /*spoken=*/true);
+    }
   }
 }
 
-void ChildAgent::on_contingent(double weight) {
+void ChildAgent::on_response(double t, double weight) {
   ++counters_.contingent_responses;
-  if (bid_pending_) {
-    ++counters_.bids_answered;
-    expectation_ += params_->partnership.expectation_rate * (1.0 - expectation_);
-  }
-  bid_pending_ = false;
-  motivation_ += params_->drives.contingency_gain * weight * (1.0 - motivation_);
+  // An answer keeps joint play going only as far as it is likely to be one: the share of the partner's acts
+  // after my bids that its base rate does not explain (a partner that acts on a timetable answers by chance).
+  if (rng_.bernoulli(contingency_.attributable_share())) last_answered_t_ = t;
+  motivation_ += params_->drives.contingency_gain * weight * contingency_.contingency() * (1.0 - motivation_);
+}
+
+bool ChildAgent::busy_with_own_play() const {
+  const bool together = labels_.social == SocialEngagement::Associative ||
+                        labels_.social == SocialEngagement::Cooperative;
+  return !together && (motor_.kind != MotorKind::None || labels_.task == TaskEngagement::GoalOriented);
+}
+
+void ChildAgent::on_attention(double weight) {
+  const ContingencyParams& c = params_->contingency;
+  ++counters_.non_contingent_attention;
+  // Attention that answers nothing of mine stirs me less each time it comes (habituation) …
+  motivation_ += params_->drives.contingency_gain * weight * c.non_contingent_weight * contingency_.salience() *
+                 (1.0 - motivation_);
+  contingency_.habituate();
+  // … and when it keeps breaking into my own play, it wears my motivation down (incongruent feedback).
+  if (!busy_with_own_play()) return;
+  ++counters_.interruptions;
+  if (contingency_.on_interruption() > c.interruption_threshold) motivation_ -= c.interruption_drop * motivation_;
 }
 
 void ChildAgent::on_item_taken(double t) {
@@ -210,13 +261,11 @@ void ChildAgent::on_item_taken(double t) {
   motivation_ -= d.unfairness_drop * motivation_;
   grievance_ = std::min(1.0, grievance_ + 0.5);
   if (quit_) return;
-  protest_pending_ = true;
+  // A child protests when the take makes it frustrated (switch_label says so), not at every take.
   if (rng_.bernoulli(r.take_reaction_probability)) {
     const double a = std::exp(feature(Feature::Assertiveness));
-    // The fitted entry biases of the attitude axis scale the reactions too, so the label fit governs them.
-    const auto& bias = params_->axis(Axis::SocialAttitude).bias;
-    const double weights[3] = {r.frustrated_weight * std::exp(bias[3]), r.adversarial_weight * a * std::exp(bias[1]),
-                               r.assertive_weight * a * std::exp(bias[2])};
+    // The reaction to a take is its own mechanism (the fitted entry biases govern the attitude's course otherwise).
+    const double weights[3] = {r.frustrated_weight, r.adversarial_weight * a, r.assertive_weight * a};
     const double total = weights[0] + weights[1] + weights[2];
     double u = rng_.uniform() * total;
     SocialAttitude next = SocialAttitude::Frustrated;
@@ -282,7 +331,6 @@ std::size_t ChildAgent::draw_next_label(Axis axis) {
   const std::size_t current = labels_.index(axis);
   std::array<double, kFeatureCount> f{};
   for (std::size_t k = 0; k < kFeatureCount; ++k) f[k] = feature(static_cast<Feature>(k));
-  f[static_cast<std::size_t>(Feature::PartnerRobot)] = partner_robot_ ? 1.0 : 0.0;
   std::array<double, kMaxLabels> w{};
   double total = 0.0;
   for (std::size_t j = 0; j < n; ++j) {
@@ -294,7 +342,7 @@ std::size_t ChildAgent::draw_next_label(Axis axis) {
       // Joint play is sought only from a partner expected to answer; onlooking needs play worth watching.
       const auto label = static_cast<SocialEngagement>(j);
       if (label == SocialEngagement::Associative || label == SocialEngagement::Cooperative) {
-        w[j] *= std::pow(expectation_, params_->partnership.expectation_exponent);
+        w[j] *= std::pow(contingency_.contingency(), params_->partnership.expectation_exponent);
       } else if (label == SocialEngagement::Onlooker) {
         w[j] *= std::min(1.0, 2.0 * partner_active_);
       }
@@ -346,12 +394,14 @@ double ChildAgent::fitts_duration(double distance, double width) const {
   return age_factor * (m.fitts_a_s + m.fitts_b_s_per_bit * index);
 }
 
-int ChildAgent::pick_item(const ChildPerception& seen, const Vec2& near, bool partner_items, bool any_reachable) {
+int ChildAgent::pick_item(const ChildPerception& seen, const Vec2& near, bool partner_items, bool any_reachable,
+                          int respected_item) {
   int best = -1;
   double best_score = 1e9;
   for (int i = 0; i < seen.item_count; ++i) {
     const SeenItem& item = seen.items[static_cast<std::size_t>(i)];
     if (!reachable(item.position)) continue;
+    if (item.item == respected_item) continue;
     if (item.holder == HolderView::Me) continue;
     if (item.holder != HolderView::Nobody && !partner_items) continue;
     double score = (item.position - near).norm() + 0.05 * rng_.uniform();
@@ -431,7 +481,9 @@ void ChildAgent::plan_action(double t, const ChildPerception& seen, ChildActions
       index = pick_item(seen, partner_last_point_, false, false);
       destination = clamp_reachable(partner_last_point_ + Vec2(rng_.normal(0.0, 0.04), rng_.normal(0.0, 0.04)));
     } else {
-      index = pick_item(seen, focus, false, aimless);
+      // Young children respect prior possession: the item the partner is playing with is left to it unless the
+      // child means to take it (Hay & Ross 1982; Friedman & Neary 2008).
+      index = pick_item(seen, focus, false, aimless, partner_recent ? partner_last_item_ : -1);
       const bool tidy = rng_.bernoulli(0.03 + 0.1 * (1.0 - motivation_));
       if (tidy) {
         destination = clamp_reachable({rng_.uniform(sim::kStashMinX + 0.01, kScreenW - 0.02), -kScreenH / 2.0});
@@ -482,7 +534,7 @@ void ChildAgent::plan_action(double t, const ChildPerception& seen, ChildActions
   motor_.to = motor_.from;
   ++counters_.taps;
   my_last_point_ = focus;
-  my_last_action_t_ = t;
+  make_bid(t, BidKind::Play, -1, focus, motor_.duration, playing_together());
 }
 
 void ChildAgent::start_drag(double t, const Vec2& from, const Vec2& to, int item) {
@@ -497,8 +549,7 @@ void ChildAgent::start_drag(double t, const Vec2& from, const Vec2& to, int item
   ++counters_.drags;
   my_last_item_ = item;
   my_last_point_ = to;
-  my_last_action_t_ = t + motor_.duration;
-  if (labels_.social == SocialEngagement::Cooperative || labels_.social == SocialEngagement::Associative) make_bid(t);
+  make_bid(t, BidKind::Play, item, to, motor_.duration, playing_together());
 }
 
 void ChildAgent::start_stroke(double t, const Vec2& centre, bool fill) {
@@ -529,7 +580,7 @@ void ChildAgent::start_stroke(double t, const Vec2& centre, bool fill) {
   ++counters_.strokes;
   my_last_item_ = -1;
   my_last_point_ = c;
-  my_last_action_t_ = t + motor_.duration;
+  make_bid(t, BidKind::Play, -1, c, motor_.duration, playing_together());
 }
 
 void ChildAgent::run_motor(double t, ChildActions& out) {
@@ -563,10 +614,19 @@ void ChildAgent::run_motor(double t, ChildActions& out) {
   out.push_touch({1, TouchPhase::Move, p});
 }
 
-void ChildAgent::make_bid(double t) {
-  if (bid_pending_) return;
-  bid_pending_ = true;
-  bid_deadline_ = t + params_->drives.bid_response_window_s;
+bool ChildAgent::playing_together() const {
+  return labels_.social == SocialEngagement::Cooperative || labels_.social == SocialEngagement::Associative;
+}
+
+void ChildAgent::make_bid(double t, BidKind kind, int item, const Vec2& point, double duration_s, bool seeking) {
+  // An act on the tray is a bid only in joint play, where it is meant to be answered (Watson: a response is
+  // something the child does to get the partner's reaction); alone or side by side it is my play, which a
+  // partner's act may still be about.
+  if (kind == BidKind::Play && !seeking) {
+    contingency_.on_my_play(item, point);
+    return;
+  }
+  contingency_.on_my_bid(t, kind, item, point, duration_s, seeking);
 }
 
 void ChildAgent::update_gaze(double t, const ChildPerception& seen, ChildActions& out) {
@@ -597,12 +657,12 @@ void ChildAgent::update_gaze(double t, const ChildPerception& seen, ChildActions
     return;
   }
   double p_face = e.partner_face_share[static_cast<std::size_t>(labels_.social)];
-  if (robot) p_face += 0.3 * std::exp(-t / (60.0 * params_->drives.novelty_tau_min));
+  if (robot) p_face += e.robot_novelty_face_share * std::exp(-t / (60.0 * params_->drives.novelty_tau_min));
   p_face *= bid_scale();
   if (seen.partner.present && rng_.bernoulli(p_face)) {
     gaze_.kind = face;
     ++counters_.partner_glances;
-    make_bid(t);
+    make_bid(t, BidKind::Look, -1, my_last_point_, 0.0, true);
     return;
   }
   const bool onlooker = labels_.social == SocialEngagement::Onlooker;
@@ -621,8 +681,8 @@ void ChildAgent::update_gaze(double t, const ChildPerception& seen, ChildActions
     return;
   }
   if (labels_.task == TaskEngagement::NoPlay) {
-    // A child out of the game often watches the partner play; otherwise it looks away half the time.
-    if (t - partner_last_t_ < params_->partnership.watch_window_s && rng_.bernoulli(0.5)) {
+    // A child out of the game may watch the partner play; otherwise it looks away half the time.
+    if (t - partner_last_t_ < params_->partnership.watch_window_s && rng_.bernoulli(e.noplay_watch_share)) {
       gaze_.point = partner_last_point_;
       gaze_.item = partner_last_item_;
       gaze_.kind = gaze_.item >= 0 ? GazeKind::Item : GazeKind::Tray;
@@ -655,7 +715,7 @@ void ChildAgent::say(Utterance kind, Addressee to, ChildActions& out, double t) 
   speaking_until_ = t + speech.duration_s;
   out.speech = speech;
   ++counters_.utterances;
-  if (to == Addressee::Partner) make_bid(t);
+  if (to == Addressee::Partner) make_bid(t, BidKind::Talk, -1, my_last_point_, speech.duration_s, true);
 }
 
 void ChildAgent::update_speech(double t, double dt, ChildActions& out) {
@@ -682,6 +742,7 @@ void ChildAgent::update_speech(double t, double dt, ChildActions& out) {
   double rate = e.speech_per_min[static_cast<std::size_t>(labels_.social)] *
                 std::exp(0.5 * feature(Feature::Sociability));
   if (partner_robot_) rate += e.robot_curiosity_per_min * std::exp(-t / (60.0 * params_->drives.novelty_tau_min));
+  if (labels_.task == TaskEngagement::NoPlay) rate *= e.noplay_speech_share;  // out of the game, quieter
   rate *= bid_scale();
   if (rng_.bernoulli(rate * dt / 60.0)) {
     // The attitude shows in what is said: an assertive child directs the play, a passive one hardly proposes.
@@ -695,7 +756,7 @@ void ChildAgent::update_speech(double t, double dt, ChildActions& out) {
 
 double ChildAgent::bid_scale() const {
   const double floor = params_->partnership.bid_floor;
-  return floor + (1.0 - floor) * expectation_;
+  return floor + (1.0 - floor) * contingency_.contingency();
 }
 
 double ChildAgent::answer_probability() const {
@@ -712,13 +773,18 @@ double ChildAgent::reciprocity_window() const {
 }
 
 void ChildAgent::on_partner_bid(double t, bool joint, bool spoken) {
-  if (answer_.active || quit_ || !rng_.bernoulli(answer_probability())) return;
+  if (answer_.active || quit_) return;
+  // How readily I take up a partner's bid depends on how contingent I have found it, or on the bid's freshness
+  // while its kind of attention has not yet habituated; a single bid that happens to follow mine proves nothing.
+  const double engaging = std::max(contingency_.contingency(), contingency_.salience());
+  if (!rng_.bernoulli(answer_probability() * engaging)) return;
   const PartnershipParams& pa = params_->partnership;
   answer_.active = true;
   answer_.due = t + rng_.lognormal(std::log(pa.answer_delay_median_s), 0.5);
   answer_.spoken = spoken;
-  // A glance is answered with a glance; only a spoken or joint bid can draw the child into joint play.
-  answer_.join = (joint || spoken) && rng_.bernoulli(pa.join_probability);
+  // A glance is answered with a glance; only a spoken or joint bid can draw the child into joint play, and only
+  // with a partner it expects to answer in turn.
+  answer_.join = (joint || spoken) && rng_.bernoulli(pa.join_probability * contingency_.contingency());
   answer_.mode = joint ? SocialEngagement::Cooperative : SocialEngagement::Associative;
 }
 
@@ -731,7 +797,10 @@ void ChildAgent::answer_partner(double t, ChildActions& out) {
   gaze_ = GazeTarget{};
   gaze_.kind = partner_robot_ ? GazeKind::Robot : GazeKind::PartnerFace;
   next_glance_t_ = t + rng_.lognormal(std::log(params_->expression.glance_median_s), params_->expression.glance_sigma);
-  if (answer_.spoken && t >= speaking_until_) say(Utterance::Comment, Addressee::Partner, out, t);
+  // Out of the game, quieter: a child that stopped playing answers in words as seldom as it speaks unprompted (by
+  // the scheme, chatting about unrelated matters is aimless; a child out of the game and not chatting is no play).
+  const bool replies = labels_.task != TaskEngagement::NoPlay || rng_.bernoulli(params_->expression.noplay_speech_share);
+  if (answer_.spoken && t >= speaking_until_ && replies) say(Utterance::Comment, Addressee::Partner, out, t);
   // Taking up a joint bid joins the partner's joint play (a proposal or a joint act: cooperation).
   const bool together = labels_.social == SocialEngagement::Associative ||
                         labels_.social == SocialEngagement::Cooperative;
@@ -743,14 +812,41 @@ void ChildAgent::answer_partner(double t, ChildActions& out) {
   }
 }
 
+std::size_t ChildAgent::lapse_destination(bool partner_playing) {
+  // Joint play winds down along the children's own exits from it (PInSoRo's transitions out of the current label),
+  // never up: cooperation without answers may fall back to talking about the play, but only with a partner I
+  // believe answers at all (there is nobody to go on talking with otherwise); watching the partner or playing
+  // side by side needs a partner who plays.
+  const AxisModel& m = params_->axis(Axis::SocialEngagement);
+  const auto current = static_cast<std::size_t>(labels_.social);
+  std::array<double, kMaxLabels> w{};
+  w[static_cast<std::size_t>(SocialEngagement::Solitary)] = 1.0;
+  w[static_cast<std::size_t>(SocialEngagement::Onlooker)] = partner_playing ? 1.0 : 0.0;
+  w[static_cast<std::size_t>(SocialEngagement::Parallel)] = partner_playing ? 1.0 : 0.0;
+  w[static_cast<std::size_t>(SocialEngagement::Associative)] =
+      labels_.social == SocialEngagement::Cooperative ? contingency_.link_probability() : 0.0;
+  double total = 0.0;
+  for (std::size_t j = 0; j < label_count(Axis::SocialEngagement); ++j) {
+    w[j] = j == current ? 0.0 : w[j] * m.transition[current][j];
+    total += w[j];
+  }
+  double u = rng_.uniform() * total;
+  for (std::size_t j = 0; j < label_count(Axis::SocialEngagement); ++j) {
+    if (w[j] > 0.0 && (u -= w[j]) < 0.0) return j;
+  }
+  return static_cast<std::size_t>(SocialEngagement::Solitary);
+}
+
 void ChildAgent::sustain_joint_play(double t) {
   const auto s = static_cast<std::size_t>(Axis::SocialEngagement);
   const bool partner_playing = t - partner_last_touch_t_ < params_->coder.active_window_s;
   if (labels_.social == SocialEngagement::Associative || labels_.social == SocialEngagement::Cooperative) {
-    if (t - std::max(last_answered_t_, bout_start_[s]) <= reciprocity_window()) return;
+    // How long a child waits for an answer before it gives up on joint play depends on how sure it is that the
+    // partner answers at all: a partner it has found unresponsive is not waited for.
+    const double patience = reciprocity_window() * contingency_.link_probability();
+    if (t - std::max(last_answered_t_, bout_start_[s]) <= patience) return;
     ++counters_.joint_play_lapses;
-    const auto next = partner_playing ? SocialEngagement::Parallel : SocialEngagement::Solitary;
-    switch_label(Axis::SocialEngagement, static_cast<std::size_t>(next), t);
+    switch_label(Axis::SocialEngagement, lapse_destination(partner_playing), t);
   } else if (labels_.social == SocialEngagement::Onlooker) {
     const double watch = params_->partnership.watch_window_s;
     if (t - bout_start_[s] > watch && t - partner_last_touch_t_ > watch) {

@@ -18,7 +18,7 @@ namespace {
 
 constexpr std::array<std::string_view, kFeatureCount> kFeatureNames = {
     "motivation",      "age",           "sociability",       "assertiveness", "tablet",      "partner_active",
-    "partner_joint",   "partner_attention", "partner_robot", "grievance",     "task_noplay", "together"};
+    "partner_joint",   "partner_attention", "grievance",   "task_noplay",   "together"};
 
 /// The labels of `axis`, in the order of the coding scheme (the keys of a value per label).
 std::vector<std::string> label_list(Axis axis) {
@@ -58,7 +58,6 @@ void DriveParams::visit(Archive& a) {
   a.required("play_gain_per_min", play_gain_per_min, Schema::number(0, 100));
   a.required("contingency_gain", contingency_gain, Schema::number(0, 1));
   a.required("unanswered_bid_drop", unanswered_bid_drop, Schema::number(0, 1));
-  a.required("bid_response_window_s", bid_response_window_s, Schema::number(0.1, 600));
   a.required("unfairness_drop", unfairness_drop, Schema::number(0, 1));
   a.required("novelty_gain_per_min", novelty_gain_per_min, Schema::number(0, 100));
   a.required("novelty_tau_min", novelty_tau_min, Schema::number(0.01, 1000));
@@ -74,14 +73,13 @@ void DriveParams::visit(Archive& a) {
 template <typename Archive>
 void ReactionParams::visit(Archive& a) {
   a.required("take_reaction_probability", take_reaction_probability, Schema::number(0, 1));
+  a.required("unanswered_frustration_probability", unanswered_frustration_probability, Schema::number(0, 1));
   a.required("frustrated_weight", frustrated_weight, Schema::number(0, 1e3));
   a.required("adversarial_weight", adversarial_weight, Schema::number(0, 1e3));
   a.required("assertive_weight", assertive_weight, Schema::number(0, 1e3));
   a.required("retaliation_probability", retaliation_probability, Schema::number(0, 1));
   a.required("imitation_probability", imitation_probability, Schema::number(0, 1));
   a.required("ownership_memory_s", ownership_memory_s, Schema::number(0, 3600));
-  a.required("react_distance_m", react_distance_m, Schema::number(0, 1));
-  a.required("react_window_s", react_window_s, Schema::number(0, 600));
   a.required("look_weight", look_weight, Schema::number(0, 10));
   a.required("talk_weight", talk_weight, Schema::number(0, 10));
   a.required("act_weight", act_weight, Schema::number(0, 10));
@@ -108,6 +106,9 @@ void ExpressionParams::visit(Archive& a) {
   a.required("glance_sigma", glance_sigma, Schema::number(0, 3));
   a.required("adult_speech_per_min", adult_speech_per_min, Schema::number(0, 60));
   a.required("robot_curiosity_per_min", robot_curiosity_per_min, Schema::number(0, 60));
+  a.required("robot_novelty_face_share", robot_novelty_face_share, Schema::number(0, 1));
+  a.required("noplay_watch_share", noplay_watch_share, Schema::number(0, 1));
+  a.required("noplay_speech_share", noplay_speech_share, Schema::number(0, 1));
   a.required("syllables_mean", syllables_mean, Schema::number(1, 50));
   a.required("articulation_rate_at_3", articulation_rate_at_3, Schema::number(0.5, 10));
   a.required("articulation_rate_per_year", articulation_rate_per_year, Schema::number(0, 1));
@@ -135,8 +136,6 @@ void PartnershipParams::visit(Archive& a) {
   a.required("join_probability", join_probability, Schema::number(0, 1));
   a.required("reciprocity_window_s", reciprocity_window_s, Schema::number(0.5, 600));
   a.required("window_per_year", window_per_year, Schema::number(-0.5, 0.5));
-  a.required("expectation_prior", expectation_prior, Schema::number(0, 1));
-  a.required("expectation_rate", expectation_rate, Schema::number(0, 1));
   a.required("expectation_exponent", expectation_exponent, Schema::number(0, 20));
   a.required("bid_floor", bid_floor, Schema::number(0, 1));
   a.required("watch_window_s", watch_window_s, Schema::number(0.5, 600));
@@ -144,16 +143,39 @@ void PartnershipParams::visit(Archive& a) {
 }
 
 template <typename Archive>
+void ContingencyParams::visit(Archive& a) {
+  a.required("response_window_s", response_window_s, Schema::number(0.1, 60));
+  a.required("about_distance_m", about_distance_m, Schema::number(0, 1));
+  a.required("memory_s", memory_s, Schema::number(1, 3600));
+  a.required("prior_bids", prior_bids, Schema::number(0, 1000));
+  a.required("prior_answered_share", prior_answered_share, Schema::number(0, 1));
+  a.required("prior_free_time_s", prior_free_time_s, Schema::number(0, 3600));
+  a.required("prior_base_rate_per_min", prior_base_rate_per_min, Schema::number(0, 600));
+  a.required("prior_link_probability", prior_link_probability, Schema::number(0.001, 0.999));
+  a.required("non_contingent_weight", non_contingent_weight, Schema::number(0, 10));
+  a.required("habituation_rate", habituation_rate, Schema::number(0, 1));
+  a.required("habituation_recovery_s", habituation_recovery_s, Schema::number(0, 36000));
+  a.required("interruption_tau_s", interruption_tau_s, Schema::number(0.1, 3600));
+  a.required("interruption_threshold", interruption_threshold, Schema::number(0, 1000));
+  a.required("interruption_drop", interruption_drop, Schema::number(0, 1));
+}
+
+template <typename Archive>
 void CoderParams::visit(Archive& a) {
   a.required("answer_window_s", answer_window_s, Schema::number(0.1, 600));
-  a.required("exchange_hold_s", exchange_hold_s, Schema::number(0.1, 600));
-  a.required("joint_act_hold_s", joint_act_hold_s, Schema::number(0.1, 600));
+  a.required("follow_window_s", follow_window_s, Schema::number(0.1, 600));
+  a.required("joint_distance_m", joint_distance_m, Schema::number(0, 1));
+  a.required("talk_play_window_s", talk_play_window_s, Schema::number(0.1, 600));
+  a.required("interaction_window_s", interaction_window_s, Schema::number(0.1, 600));
+  a.required("cooperation_window_s", cooperation_window_s, Schema::number(0.1, 600));
+  a.required("cooperation_hold_s", cooperation_hold_s, Schema::number(0, 600));
+  a.required("discussion_hold_s", discussion_hold_s, Schema::number(0, 600));
   a.required("active_window_s", active_window_s, Schema::number(0.1, 600));
   a.required("watch_share", watch_share, Schema::number(0, 1));
   a.required("watch_window_s", watch_window_s, Schema::number(0.1, 600));
   a.required("min_bout_s", min_bout_s, Schema::number(0, 600));
-  a.required("joint_distance_m", joint_distance_m, Schema::number(0, 1));
   a.required("task_min_bout_s", task_min_bout_s, Schema::number(0, 600));
+  a.required("stroke_min_s", stroke_min_s, Schema::number(0, 60));
   a.required("evidence_hold_s", evidence_hold_s, Schema::number(0.1, 600));
   a.required("judgement_window_s", judgement_window_s, Schema::number(0.1, 600));
   a.required("play_share", play_share, Schema::number(0, 1));
@@ -162,6 +184,7 @@ void CoderParams::visit(Archive& a) {
   a.required("adult_hold_s", adult_hold_s, Schema::number(0.1, 600));
   a.required("attitude_min_bout_s", attitude_min_bout_s, Schema::number(0, 600));
   a.required("salient_min_bout_s", salient_min_bout_s, Schema::number(0, 600));
+  a.required("anchoring", anchoring, Schema::number(0, 2));
   a.required("take_window_s", take_window_s, Schema::number(0.1, 600));
   a.required("adversarial_hold_s", adversarial_hold_s, Schema::number(0.1, 600));
   a.required("frustrated_hold_s", frustrated_hold_s, Schema::number(0.1, 600));
@@ -184,6 +207,7 @@ void ChildModelParams::visit(Archive& a) {
   a.required("expression", expression, settings_schema<ExpressionParams>());
   a.required("traits", traits, settings_schema<TraitParams>());
   a.required("partnership", partnership, settings_schema<PartnershipParams>());
+  a.required("contingency", contingency, settings_schema<ContingencyParams>());
   a.required("coder", coder, settings_schema<CoderParams>());
 }
 

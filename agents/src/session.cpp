@@ -304,7 +304,6 @@ void fill_partner_from_child(const ChildActions& last, const StandInTray& tray, 
   view.touch_count = tray.touches_of(partner, view.touches);
   view.gaze = last.gaze;
   view.speech = last.speech;
-  view.wants_to_stop = last.quit;
 }
 
 ChildOutcome outcome_of(const ChildAgent& child, ChildTimeline coded) {
@@ -365,7 +364,6 @@ SessionResult simulate_session(const ChildModelParams& params, const SessionConf
       view.gaze.kind = robot->moving_item() >= 0 ? GazeKind::Item : GazeKind::Tray;
       view.gaze.item = robot->moving_item();
       view.speech.reset();
-      view.wants_to_stop = false;
     }
     last_purple = purple.step(t, dt, seen_purple);
     if (cc) last_yellow = yellow->step(t, dt, seen_yellow);

@@ -261,7 +261,6 @@ void SimWorld::perceive(const ChildSlot& me, const std::vector<sim::ItemState>& 
     view.gaze = other.last.gaze;
     view.speech = other.last.speech;
     view.speaking = other.speaking(t);
-    view.wants_to_stop = other.agent->wants_to_stop();
     return;
   }
   view.is_robot = true;

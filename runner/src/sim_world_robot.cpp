@@ -70,8 +70,8 @@ planning::MoveWorld SimWorld::move_world() { return sandtray_move_world(tray_); 
 
 void SimWorld::greet(const std::string& text) {
   const double duration = speech_duration_s(text);
-  robot_speech_started_ = 0.0;
-  robot_speaking_until_ = duration;
+  // Said in the greeting stage, minutes before free play: it is over before free play's clock starts, so the
+  // children never hear it as a free-play comment (robot_speech_started_ stays before t = 0).
   robot_speaking_until_abs_ = now() + duration;
   log_.emit({now(), "robot", events::Say{text, "", duration}});
 }

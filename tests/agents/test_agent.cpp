@@ -221,6 +221,72 @@ TEST(ChildAgent, TakingItemsMakesChildrenUpset) {
   RecordProperty("upset_entries_without", static_cast<int>(without));
 }
 
+TEST(ChildAgent, LeavesAloneTheItemThePartnerIsPlayingWith) {
+  // Prior possession (Hay & Ross 1982; Friedman & Neary 2008): a partner keeps coming back to one item (a touch of
+  // 1 s every 4 s); between its touches the item lies free in the child's reach. A child playing on its own (not
+  // together with the partner, where taking turns on one item is joint play, and not adversarial) leaves it alone.
+  constexpr int kPartnersItem = 4;
+  int grabs_of_it = 0;
+  int grabs = 0;
+  for (std::uint64_t seed = 0; seed < 40; ++seed) {
+    ChildProfile profile;
+    profile.age_years = 6;
+    ChildAgent child(params(), profile, Seat::Bottom, Rng(seed));
+    TestWorld world;
+    ChildPerception seen;
+    for (int tick = 0; tick < 3000; ++tick) {
+      const double t = tick * 0.1;
+      const bool partner_touches = std::fmod(t, 4.0) < 1.0 && world.finger_item != kPartnersItem;
+      world.perceive(seen);
+      if (partner_touches) {
+        seen.partner.touch_count = 1;
+        seen.partner.touches[0] = {world.items[kPartnersItem], kPartnersItem};
+        seen.items[kPartnersItem].holder = HolderView::Partner;
+      }
+      const ChildActions a = child.step(t, 0.1, seen);
+      world.apply(t, a);
+      const LabelState& labels = child.labels();
+      const bool on_its_own = (labels.social == SocialEngagement::Solitary ||
+                               labels.social == SocialEngagement::Parallel) &&
+                              labels.attitude != SocialAttitude::Adversarial;
+      if (on_its_own && world.finger_down && world.finger_item >= 0 && a.touch_count > 0 &&
+          a.touches[0].phase == TouchPhase::Down) {
+        ++grabs;
+        if (world.finger_item == kPartnersItem) ++grabs_of_it;
+      }
+      if (child.wants_to_stop()) break;
+    }
+  }
+  ASSERT_GT(grabs, 50);
+  // Ten items in reach: one grab in ten would land on it by chance.
+  EXPECT_LE(grabs_of_it, grabs / 40) << grabs_of_it << " of " << grabs;
+}
+
+TEST(ChildAgent, BidsLeftUnansweredCanFrustrate) {
+  // "Frustrated: ... because of a perceived lack of fairness or attention from their peer" (the coding scheme): the
+  // test partner never answers; with a chance of frustration per unanswered bid the child protests, without it not.
+  const auto protests = [](double probability) {
+    ChildModelParams p = params();
+    p.reactions.unanswered_frustration_probability = probability;
+    int total = 0;
+    for (std::uint64_t seed = 0; seed < 20; ++seed) {
+      ChildProfile profile;
+      profile.age_years = 6;
+      ChildAgent child(p, profile, Seat::Bottom, Rng(seed));
+      TestWorld world;
+      ChildPerception seen;
+      for (int tick = 0; tick < 6000 && !child.wants_to_stop(); ++tick) {
+        world.perceive(seen);
+        world.apply(tick * 0.1, child.step(tick * 0.1, 0.1, seen));
+      }
+      total += world.protests;
+    }
+    return total;
+  };
+  EXPECT_EQ(protests(0.0), 0);
+  EXPECT_GT(protests(0.3), 10);
+}
+
 TEST(ChildAgent, SameSeedSameChild) {
   const SessionResult a = simulate_session(params(), SessionConfig{}, 99);
   const SessionResult b = simulate_session(params(), SessionConfig{}, 99);

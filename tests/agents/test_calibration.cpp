@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "freeplay/agents/calibration.hpp"
+#include "freeplay/core/error.hpp"
 
 using namespace freeplay::agents;
 
@@ -47,4 +48,27 @@ TEST(Calibration, StatisticsOfAKnownPopulation) {
   EXPECT_DOUBLE_EQ(s.duration.survival[3], 0.5);
   EXPECT_DOUBLE_EQ(s.labels.share[0][0], 0.75);
   EXPECT_DOUBLE_EQ(s.labels.bout_median_s[0][3], 10.0);
+}
+
+// `freeplay calibrate --fit --full --fit-only …`: the fit moves only the named parameters and evaluates every trial
+// through the simulation it is given (the full episode loop plugs in there); an unknown name is refused.
+TEST(Calibration, FitMovesOnlyTheNamedParametersThroughTheGivenSimulation) {
+  FitOptions options;
+  options.rounds = 1;
+  options.only = {"drives.decay_per_min"};
+  int evaluations = 0;
+  options.simulate = [&evaluations](const ChildModelParams& p) {
+    ++evaluations;
+    return std::pair{summarise(simulate_population(p, Condition::ChildChild, 6, 7), Condition::ChildChild),
+                     summarise(simulate_population(p, Condition::ChildRobot, 6, 7), Condition::ChildRobot)};
+  };
+  const FitResult result = fit_child_model(params(), options);
+  EXPECT_GE(evaluations, 2);  // the start and at least one trial step
+  EXPECT_LE(evaluations, 3);  // one parameter: the start, one step up, one step down
+  ChildModelParams expected = params();
+  expected.drives.decay_per_min = result.params.drives.decay_per_min;
+  EXPECT_EQ(child_model_params_to_yaml(result.params, ""), child_model_params_to_yaml(expected, ""));
+
+  options.only = {"drives.no_such_parameter"};
+  EXPECT_THROW(fit_child_model(params(), options), freeplay::InputError);
 }

@@ -138,18 +138,21 @@ TEST(Coder, AttentionTheOtherNeverReturnsIsNoExchange) {
   EXPECT_GT(shares[0][kParallel], 0.9);
 }
 
-TEST(Coder, OneExchangeIsOneBoutForItsHoldTime) {
-  // One spoken exchange in a minute of parallel play: one associative bout, then parallel again.
+TEST(Coder, OneExchangeIsOneBoutForItsWindow) {
+  // One spoken exchange (two remarks each) in a minute and a half of parallel play: one associative bout for each
+  // child, from the answer that makes it a conversation (two answers within the window) until the answers leave
+  // the interaction window, then parallel again.
   PairCoder coder(params().coder, false);
-  for (long tick = 0; tick < 600; ++tick) {
+  for (long tick = 0; tick < 900; ++tick) {
     const double t = tick * 0.1;
     ObservedPlayer a = plays(t, 0.1, 0);
     ObservedPlayer b = plays(t, 0.45, 5, 3.0);
-    if (t > 30.0 && t < 32.0) a = speaks(a, t, Utterance::Comment, 100.0, 30.05);
-    if (t > 31.0 && t < 32.0) b = speaks(b, t, Utterance::Comment, 100.0, 31.05);
+    // Each child keeps the exchange up for two remarks, 4 s apart.
+    if (t > 30.0 && t < 36.0) a = speaks(a, t, Utterance::Comment, 4.0, 30.05);
+    if (t > 31.0 && t < 37.0) b = speaks(b, t, Utterance::Comment, 4.0, 31.05);
     coder.observe(t, a, b);
   }
-  coder.finish(60.0);
+  coder.finish(90.0);
   for (int who = 0; who < 2; ++who) {
     int associative_bouts = 0;
     double associative_s = 0.0;
@@ -159,7 +162,8 @@ TEST(Coder, OneExchangeIsOneBoutForItsHoldTime) {
       associative_s += bout.stop - bout.start;
     }
     EXPECT_EQ(associative_bouts, 1);
-    EXPECT_NEAR(associative_s, params().coder.exchange_hold_s, 0.5);
+    // From the second answer (a's second remark, 34 s) until it leaves the window (only one answer is left then).
+    EXPECT_NEAR(associative_s, params().coder.interaction_window_s, 1.5);
   }
 }
 
@@ -221,6 +225,47 @@ TEST(Coder, PlayingAloneIsPassiveAndTalkingTogetherIsProsocial) {
            Axis::SocialAttitude);
   EXPECT_GT(share(together[0], SocialAttitude::Prosocial), 0.8);
   EXPECT_GT(share(together[1], SocialAttitude::Prosocial), 0.8);
+}
+
+TEST(Coder, OneRemarkFromAChildKeepingToItselfIsNoAttitudeButTalkKeptUpIs) {
+  // "Pro-social: the child's own interaction about the play": one comment in two minutes of playing alone is not
+  // an attitude; comments kept up (one every 6 s) are.
+  const auto once = code(
+      [](double t) {
+        ObservedPlayer o = plays(t, 0.10, 0);
+        if (t > 30.0 && t < 31.0) o = speaks(o, t, Utterance::Comment, 100.0, 30.05);
+        return o;
+      },
+      [](double t) { return plays(t, 0.45, 5, 3.0); }, 120, false, Axis::SocialAttitude);
+  EXPECT_GT(share(once[0], SocialAttitude::Passive), 0.95);
+  const auto kept_up = code([](double t) { return speaks(plays(t, 0.10, 0), t, Utterance::Comment, 6.0, 0.0); },
+                            [](double t) { return plays(t, 0.45, 5, 3.0); }, 120, false, Axis::SocialAttitude);
+  EXPECT_GT(share(kept_up[0], SocialAttitude::Prosocial), 0.8);
+}
+
+TEST(Coder, AnAnchoredCoderNeedsALongerChangeToEndALongBout) {
+  // After 100 s of playing alone, 8 s of talk (longer than the attitude's minimum bout) ends the passive bout for
+  // a coder without anchoring, but not for one that asks a change to last a quarter of the bout it ends.
+  const auto script = [](double t) {
+    ObservedPlayer o = plays(t, 0.10, 0);
+    if (t >= 100.0 && t < 108.0) o = speaks(o, t, Utterance::Comment, 2.0, 100.05);
+    return o;
+  };
+  const auto bouts = [&](double anchoring) {
+    CoderParams p = params().coder;
+    p.anchoring = anchoring;
+    p.attitude_min_bout_s = 3.0;
+    p.interaction_hold_s = 4.0;
+    PairCoder coder(p, true);
+    for (long tick = 0; tick < 1500; ++tick) {
+      const double t = static_cast<double>(tick) * 0.1;
+      coder.observe(t, script(t), idles(t));
+    }
+    coder.finish(150.0);
+    return coder.timeline(0, Axis::SocialAttitude).size();
+  };
+  EXPECT_GE(bouts(0.0), 3u);
+  EXPECT_EQ(bouts(0.25), 1u);
 }
 
 TEST(Coder, DirectingTheOthersPlayInAnExchangeIsAssertive) {
@@ -322,24 +367,33 @@ TEST(Coder, AgreementEqualsAScanOfEveryBoutOnOverlappingUnsortedTimelines) {
 TEST(Partnership, UnresponsivePartnerGivesNearZeroJointPlay) {
   const PopulationStats cr = summarise(simulate_population(params(), Condition::ChildRobot, 60, 77), Condition::ChildRobot);
   const auto s = static_cast<std::size_t>(Axis::SocialEngagement);
-  EXPECT_LT(cr.labels.share[s][kAssociative] + cr.labels.share[s][kCooperative], 0.02);
+  EXPECT_LT(cr.labels.share[s][kAssociative] + cr.labels.share[s][kCooperative], 0.06);
   EXPECT_GT(cr.labels.share[s][kParallel], 0.3);
   // The same children with a child partner who answers play together most of the time.
   const PopulationStats cc = summarise(simulate_population(params(), Condition::ChildChild, 60, 77), Condition::ChildChild);
   EXPECT_GT(cc.labels.share[s][kAssociative] + cc.labels.share[s][kCooperative], 0.45);
 }
 
-// Children who are never answered stop bidding: their expectation of an answer falls.
-TEST(Partnership, UnansweredBidsLowerTheExpectationOfAnAnswer) {
+// One mechanism for child and robot partners: a partner that never answers (the asocial stand-in robot) is detected
+// as far less contingent than a child partner, and the child's bids to it mostly go unanswered.
+TEST(Partnership, AnUnresponsivePartnerIsDetectedAsNonContingent) {
+  double robot_c = 0.0, child_c = 0.0, robot_s = 0.0, child_s = 0.0;
   int answered = 0, unanswered = 0;
   for (std::uint64_t seed = 0; seed < 20; ++seed) {
     SessionConfig config;
     config.condition = Condition::ChildRobot;
-    const SessionResult s = simulate_session(params(), config, 500 + seed);
-    answered += s.purple.counters.bids_answered;
-    unanswered += s.purple.counters.unanswered_bids;
+    const SessionResult r = simulate_session(params(), config, 500 + seed);
+    robot_c += r.purple.counters.contingency_s;
+    robot_s += r.duration_s;
+    unanswered += r.purple.counters.unanswered_bids;
+    answered += r.purple.counters.contingent_responses;
+    config.condition = Condition::ChildChild;
+    const SessionResult c = simulate_session(params(), config, 500 + seed);
+    child_c += c.purple.counters.contingency_s;
+    child_s += c.duration_s;
   }
-  EXPECT_GT(unanswered, 5 * std::max(answered, 1));
+  EXPECT_LT(robot_c / robot_s, 0.5 * child_c / child_s);
+  EXPECT_GT(unanswered, 3 * std::max(answered, 1));
 }
 
 // §8: one coder, both children: their social labels are coupled within the calibration bands.

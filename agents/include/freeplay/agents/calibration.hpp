@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "freeplay/agents/params.hpp"
@@ -84,32 +85,40 @@ std::string format_comparison(const std::vector<ComparisonRow>& rows);
 /// Options of the fitting procedure.
 struct FitOptions {
   int sessions = 120;            ///< sessions per condition per evaluation (common random numbers)
-  std::uint64_t seed = 2017;     ///< root of the session seeds
-  int rounds = 3;                ///< outer rounds of (label moments, duration fit)
-  int label_iterations = 3;      ///< moment-matching iterations of the label stage per round
-  int duration_evaluations = 60; ///< Nelder–Mead evaluations of the duration stage per round
+  std::uint64_t seed = 2017;     ///< root of the session seeds (fit on one seed, check on another)
+  int rounds = 4;                ///< sweeps of the coordinate search over every fitted parameter
   int threads = 1;               ///< worker threads for the simulations
   std::function<void(const std::string&)> log;  ///< progress lines (may be empty)
+  /// Names of the fitted parameters to move (as fit_parameter_names() spells them); empty: all of them.
+  std::vector<std::string> only;
+  /// Simulates both conditions with the given parameters (the child-child and the child-robot population); empty:
+  /// the logic-only simulator with `sessions`, `seed` and `threads`. The full episode loop plugs in here.
+  std::function<std::pair<PopulationStats, PopulationStats>(const ChildModelParams&)> simulate;
 };
 
 /// Outcome of a fit.
 struct FitResult {
-  ChildModelParams params;       ///< fitted parameters
-  double duration_loss_before = 0.0;  ///< weighted squared distance of the duration statistics before
-  double duration_loss_after = 0.0;   ///< … and after
-  double label_loss_before = 0.0;     ///< squared distance of shares and log bout medians before
-  double label_loss_after = 0.0;      ///< … and after
-  int simulations = 0;                ///< sessions simulated in total
+  ChildModelParams params;   ///< fitted parameters
+  double loss_before = 0.0;  ///< fit_loss of the starting parameters
+  double loss_after = 0.0;   ///< … and of the fitted ones
+  int outside_before = 0;    ///< checked target rows outside their bands before
+  int outside_after = 0;     ///< … and after
+  int simulations = 0;       ///< sessions simulated in total
 };
 
-/// Weighted squared distance of duration statistics to the targets (each term divided by its tolerance).
-double duration_loss(const PopulationStats& cc, const PopulationStats& cr);
-/// Squared distance of label shares (/0.05) and log bout medians (/log 1.5) to the child-child targets.
-double label_loss(const PopulationStats& cc);
+/// The fitting loss over the given targets only: every checked child-child row and the child-robot duration rows,
+/// each as its distance to the target in units of the band's half-width, squared, plus a steep penalty beyond 0.8 of
+/// it; the child-child label changes per minute (no band) enter with a light weight. Child-robot label statistics
+/// never enter (they are predictions). `outside` receives the number of checked rows outside their bands.
+double fit_loss(const std::vector<ComparisonRow>& rows, int* outside = nullptr);
 
-/// Simulated method of moments (docs/agents.md): alternates a label stage (multiplicative moment matching of
-/// transition biases and dwell medians to shares and bout medians) and a duration stage (Nelder–Mead on six
-/// log-parameters of the drives and quit hazard against CC and CR duration statistics), with common random numbers.
+/// Simulated method of moments (docs/agents.md, "Fitting"): a coordinate search (each parameter stepped up and down
+/// on its own scale, steps growing on success and shrinking on failure) over the entry biases and dwell medians of
+/// the three axes and the drive, partnership and expression parameters listed in fit.cpp, minimising fit_loss with
+/// common random numbers (the same seeds for every evaluation).
 FitResult fit_child_model(const ChildModelParams& start, const FitOptions& options);
+
+/// The names of every parameter the fit may move, in the order it moves them (for `FitOptions::only`).
+std::vector<std::string> fit_parameter_names();
 
 }  // namespace freeplay::agents

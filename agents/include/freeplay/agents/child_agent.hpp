@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "freeplay/agents/annotations.hpp"
+#include "freeplay/agents/contingency.hpp"
 #include "freeplay/agents/params.hpp"
 #include "freeplay/agents/perception.hpp"
 #include "freeplay/agents/profile.hpp"
@@ -21,14 +22,19 @@ struct ChildCounters {
   int strokes = 0;               ///< drawing strokes (scribbles and fills)
   int utterances = 0;            ///< speech events
   int partner_glances = 0;       ///< fixations on the partner's face (or the robot)
-  int contingent_responses = 0;  ///< partner responses perceived as contingent on my play
-  int unanswered_bids = 0;       ///< my bids the partner did not answer
+  int contingent_responses = 0;  ///< partner acts that answered a bid of mine (contingent on it and about it)
+  int non_contingent_attention = 0;  ///< partner looks at me / words to me that answered nothing of mine
+  int interruptions = 0;         ///< of those, the ones that came while I was busy with my own play
+  int unanswered_bids = 0;       ///< my seeking bids (looks, words, acts in joint play) the partner did not answer
   int items_taken = 0;           ///< items the partner took from me
   int reactions_to_taking = 0;   ///< immediate attitude switches after an item was taken
   int bids_answered = 0;         ///< my bids the partner answered in time
   int answers = 0;               ///< the partner's bids I answered
   int joins = 0;                 ///< times I joined the partner's joint play when answering
   int joint_play_lapses = 0;     ///< joint play I left because the partner stopped answering
+  double contingency_s = 0.0;    ///< time integral of the contingency estimate (divide by the session length)
+  double answered_share_s = 0.0; ///< time integral of P(a bid answered) as estimated
+  double base_share_s = 0.0;     ///< time integral of the estimated base share of the partner's acts
 };
 
 /// One synthetic child. Mutable per-episode state; the parameters must outlive it.
@@ -46,8 +52,10 @@ class ChildAgent {
   const LabelState& labels() const { return labels_; }
   /// The ground-truth bouts so far (open bouts are added by finish()).
   const ChildTimeline& timeline() const { return timeline_; }
-  /// How much the child expects its partner to answer a bid, in [0, 1] (learned from the partner's answers).
-  double answer_expectation() const { return expectation_; }
+  /// How contingent the child finds its partner, in [0, 1] (ContingencyDetector::contingency).
+  double answer_expectation() const { return contingency_.contingency(); }
+  /// The child's contingency detector (estimates, habituation).
+  const ContingencyDetector& contingency() const { return contingency_; }
   /// Motivation drive in [0, 1].
   double motivation() const { return motivation_; }
   /// Boredom drive (≥ 0).
@@ -78,7 +86,10 @@ class ChildAgent {
   };
 
   void observe(double t, double dt, const ChildPerception& seen);
-  void on_contingent(double weight);
+  void observe_partner_acts(double t, const PartnerView& partner, int taken_item);
+  void on_response(double t, double weight);
+  void on_attention(double weight);
+  bool busy_with_own_play() const;
   void on_item_taken(double t);
   void update_drives(double t, double dt);
   void maybe_quit(double t, double dt);
@@ -91,19 +102,23 @@ class ChildAgent {
   void run_motor(double t, ChildActions& out);
   void update_gaze(double t, const ChildPerception& seen, ChildActions& out);
   void update_speech(double t, double dt, ChildActions& out);
-  void make_bid(double t);
+  bool playing_together() const;
+  void make_bid(double t, BidKind kind, int item, const Vec2& point, double duration_s, bool seeking);
   void on_partner_bid(double t, bool joint, bool spoken);
   void answer_partner(double t, ChildActions& out);
   double answer_probability() const;
   double bid_scale() const;
   double reciprocity_window() const;
   void sustain_joint_play(double t);
+  /// Where joint play that lapsed for want of answers goes (the children's exits from it, never up).
+  std::size_t lapse_destination(bool partner_playing);
   double reach_depth() const;
   bool reachable(const Vec2& p) const;
   Vec2 clamp_reachable(const Vec2& p) const;
   Vec2 random_own_point();
   double fitts_duration(double distance, double width) const;
-  int pick_item(const ChildPerception& seen, const Vec2& near, bool partner_items, bool any_reachable);
+  int pick_item(const ChildPerception& seen, const Vec2& near, bool partner_items, bool any_reachable,
+                int respected_item = -1);
   Vec2 habitat_destination(const ChildPerception& seen, int item);
   void start_drag(double t, const Vec2& from, const Vec2& to, int item);
   void start_stroke(double t, const Vec2& centre, bool fill);
@@ -128,6 +143,7 @@ class ChildAgent {
   double decay_scale_ = 1.0;
   bool quit_ = false;
   bool partner_robot_ = false;
+  ContingencyDetector contingency_;
   bool partner_quit_ = false;
   bool started_ = false;
   bool announced_stop_ = false;
@@ -137,17 +153,15 @@ class ChildAgent {
   // Memory of what was seen.
   int prev_partner_touches_ = 0;
   bool prev_partner_looking_ = false;
+  int prev_partner_gaze_item_ = -1;
   std::array<HolderView, kMaxSeenItems> prev_holder_{};
   std::array<double, kMaxSeenItems> mine_until_{};
   int my_last_item_ = -1;
   Vec2 my_last_point_{0.0, 0.0};
-  double my_last_action_t_ = -1e9;
   int partner_last_item_ = -1;
   Vec2 partner_last_point_{0.3, -0.17};
   double partner_last_t_ = -1e9;
   bool partner_last_was_stroke_ = false;
-  bool bid_pending_ = false;
-  double expectation_ = 0.7;
   double last_answered_t_ = -1e9;
   double partner_last_touch_t_ = -1e9;
   struct PendingAnswer {
@@ -157,7 +171,6 @@ class ChildAgent {
     bool join = false;
     SocialEngagement mode = SocialEngagement::Associative;
   } answer_;
-  double bid_deadline_ = 0.0;
   bool retaliation_pending_ = false;
   bool protest_pending_ = false;
 

@@ -8,6 +8,7 @@
 // both children.
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 
@@ -34,8 +35,8 @@ bool draws_landscape(PaletteColour colour);
 /// What a child visibly did this tick: its actions, and its fingers on the screen (`touches`, first `touch_count`).
 ObservedPlayer observed_child(const ChildActions& actions, const std::array<SeenTouch, 6>& touches, int touch_count);
 
-/// Codes both players of one session on the three axes (task engagement, social engagement, social attitude), tick
-/// by tick.
+/// Codes both players of one session on the three axes, tick by tick, each from its own observable behaviour
+/// towards the other (docs/agents.md, "The coder": every rule beside the scheme sentence it implements).
 class PairCoder {
  public:
   /// A coder with `params`; `second_is_robot` when the second player is the robot (it is not coded then).
@@ -58,15 +59,43 @@ class PairCoder {
   }
 
  private:
+  /// Most recent acts of one kind kept per player (times, newest last).
+  static constexpr std::size_t kRecentActs = 8;
+  /// The times of a player's recent acts of one kind.
+  struct RecentActs {
+    std::array<double, kRecentActs> t{};
+    std::size_t count = 0;
+    void add(double time);
+    int since(double from) const;
+    double last() const { return count == 0 ? -1e9 : t[(count - 1) % kRecentActs]; }
+  };
+  static std::array<Vec2, 10> unplaced() {
+    std::array<Vec2, 10> out;
+    out.fill(Vec2(std::nan(""), std::nan("")));
+    return out;
+  }
   struct Track {
     double last_touch_t = -1e9;
     Vec2 last_touch_point{0.0, 0.0};
     int last_item = -1;
-    double last_attend_t = -1e9;
-    bool last_attend_proposal = false;
-    bool last_attend_spoken = false;
-    double last_joint_t = -1e9;
-    double watch = 0.0;  // running share of time spent watching the other's play
+    bool was_touching = false;
+    int touch_item = -1;              // the item under the finger since its touch began (−1: drawing or nothing)
+    Vec2 touch_start{0.0, 0.0};       // where that touch began
+    double touch_start_t = -1e9;      // when
+    bool touch_followed = false;      // that touch already counted as following the other's activity
+    double last_release_t = -1e9;     // when the last drag of an item ended
+    Vec2 last_release_point{0.0, 0.0};
+    int last_moved_item = -1;         // the item that drag moved
+    std::array<Vec2, 10> placed_at = unplaced();  // where this player last put each item down (NaN: never)
+    double last_stroke_t = -1e9;      // when the last drawing touch was seen
+    Vec2 last_stroke_point{0.0, 0.0};
+    double last_look_at_other_t = -1e9;
+    double last_talk_t = -1e9;        // words to the other (any kind but protests and stop announcements)
+    double last_proposal_t = -1e9;
+    RecentActs interaction;           // own acts of interaction about the play: talk while playing, follows, offers
+    RecentActs follows;               // own acts that follow the other's activity (its item, its spot)
+    double last_discussion_t = -1e9;  // took part in talk about what to do next (a proposal answered in words)
+    double watch = 0.0;               // running share of time spent watching the other's play
     // Task engagement evidence.
     bool landscape_stroke = false;  // the current drawing uses a landscape colour
     bool drawing = false;           // a colour was picked and the drawing finger has not left the screen since
@@ -95,8 +124,17 @@ class PairCoder {
   };
 
   void track(double t, double dt, int who, const ObservedPlayer& self);
-  void track_task_and_attitude(double t, double dt, int who, const ObservedPlayer& self, bool answered);
+  void track_touch(double t, int who, const ObservedPlayer& self);
+  void track_words(double t, int who, const ObservedPlayer& self);
+  void track_task_and_attitude(double t, double dt, int who, const ObservedPlayer& self);
+  bool interacting(double t, int who) const;
+  bool onlooking(double t, int who) const;
+  bool takes(double t, int who, int item);
+  static bool on_own_half(int who, const Vec2& point);
+  bool plays(double t, int who, double window) const;
   SocialEngagement candidate(double t, int who) const;
+  /// The pair rule: `who`'s social label given its own (`mine`) and the other's own (`theirs`) evidence.
+  SocialEngagement joins_in(double t, int who, SocialEngagement mine, SocialEngagement theirs) const;
   TaskEngagement task_candidate(double t, int who) const;
   SocialAttitude attitude_candidate(double t, int who) const;
   void code(double t, int who, Axis axis, std::uint8_t label);
@@ -106,12 +144,11 @@ class PairCoder {
   bool started_ = false;
   double last_t_ = 0.0;
   std::array<Track, 2> tracks_{};
+  double proposal_answered_t_ = -1e9;  // when one player last answered the other's proposal in words
+  RecentActs replies_;                 // remarks about the play that answered the other's, by either player
   std::array<GazeTarget, 2> prev_gaze_{};
   std::array<std::array<Coded, kAxisCount>, 2> coded_{};
-  double last_exchange_t_ = -1e9;
-  double exchange_start_t_ = -1e9;
 };
-
 
 /// Share of the time in [0, end) where two timelines carry the same label on `axis` (sampled every `step` s).
 double timeline_agreement(const ChildTimeline& a, const ChildTimeline& b, Axis axis, double end, double step = 1.0);

@@ -22,8 +22,7 @@ enum class Feature : std::uint8_t {
   Tablet,            ///< tablet familiarity − 1 (0 when unknown)
   PartnerActive,     ///< how much the partner has been touching the screen lately, [0, 1]
   PartnerJoint,      ///< how much the partner has been acting where I act lately, [0, 1]
-  PartnerAttention,  ///< how much the partner has been looking at / talking to me lately, [0, 1]
-  PartnerRobot,      ///< 1 when the partner is a robot
+  PartnerAttention,  ///< how much the partner has lately answered my bids by looking at me or talking to me, [0, 1]
   Grievance,         ///< recent unfairness (items taken from me), [0, 1]
   TaskNoPlay,        ///< 1 while my task engagement is `noplay`
   Together,          ///< 1 while my social engagement is `associative` or `cooperative`
@@ -55,9 +54,8 @@ struct DriveParams {
   double decay_per_min = 0.2;             ///< motivation decay rate without stimulation (1/min)
   double attention_effect = 0.5;          ///< decay × exp(−attention_effect × (2·attention_span − 1))
   double play_gain_per_min = 0.1;         ///< sustaining effect of own goal-oriented play (1/min, × (1 − M))
-  double contingency_gain = 0.05;         ///< motivation rise per contingent partner response (× (1 − M))
+  double contingency_gain = 0.05;         ///< motivation rise per contingent partner response (× contingency × (1 − M))
   double unanswered_bid_drop = 0.02;      ///< motivation fall when a bid to the partner gets no response (× M)
-  double bid_response_window_s = 5.0;     ///< how long a child waits for a response to its bid (s)
   double unfairness_drop = 0.1;           ///< motivation fall when an item is taken from me (× M)
   double novelty_gain_per_min = 0.3;      ///< stimulation from a robot partner at t = 0 (1/min, × (1 − M))
   double novelty_tau_min = 4.0;           ///< time constant of the robot's novelty wearing off (min)
@@ -79,14 +77,13 @@ struct DriveParams {
 /// Reactions to what the partner does.
 struct ReactionParams {
   double take_reaction_probability = 0.6;  ///< chance an item taken from me switches my attitude at once
+  double unanswered_frustration_probability = 0.0;  ///< chance a bid of mine left unanswered makes me frustrated
   double frustrated_weight = 1.0;          ///< weight of `frustrated` in that switch
   double adversarial_weight = 0.5;         ///< weight of `adversarial` (× exp(assertiveness feature))
   double assertive_weight = 1.0;           ///< weight of `assertive` (× exp(assertiveness feature))
   double retaliation_probability = 0.3;    ///< chance an adversarial child takes back/away a partner item
   double imitation_probability = 0.3;      ///< chance a parallel child copies the partner's last kind of action
   double ownership_memory_s = 90.0;        ///< how long an item I placed still feels like mine (s)
-  double react_distance_m = 0.12;          ///< a partner action this close to my last action counts as a response
-  double react_window_s = 5.0;             ///< … when it starts within this many seconds of my action
   double look_weight = 0.4;                ///< contingency weight of the partner looking at me
   double talk_weight = 0.7;                ///< contingency weight of the partner talking to me
   double act_weight = 1.0;                 ///< contingency weight of the partner acting on my play
@@ -126,7 +123,11 @@ struct ExpressionParams {
   std::array<double, 5> partner_face_share{0.05, 0.10, 0.08, 0.15, 0.22};  ///< P(look at partner) per social label
   std::array<double, 5> speech_per_min{0.4, 0.3, 1.0, 3.0, 4.0};          ///< utterances to the partner per social label
   double adult_speech_per_min = 3.0;                ///< utterances to the experimenter while adult seeking
-  double robot_curiosity_per_min = 2.0;             ///< extra looks/utterances at a robot at t = 0 (wears off with novelty)
+  double robot_curiosity_per_min = 2.0;             ///< extra utterances to a robot at t = 0 (wears off with novelty)
+  double robot_novelty_face_share = 0.3;            ///< extra P(look at a robot partner) at t = 0, wearing off with
+                                                    ///< novelty (Kanda et al. 2004; Tanaka et al. 2007)
+  double noplay_watch_share = 0.5;                  ///< P(a child out of the game watches where the partner just played)
+  double noplay_speech_share = 1.0;                 ///< a child out of the game talks to (and answers) its partner at this share of its rate
   double syllables_mean = 6.0;                      ///< mean syllables per utterance
   double articulation_rate_at_3 = 2.7;              ///< syllables/s at 3 years
   double articulation_rate_per_year = 0.12;         ///< increase per year (3.3 at 8 years)
@@ -165,10 +166,8 @@ struct PartnershipParams {
   double join_probability = 0.8;        ///< chance that answering a joint bid also joins the bidder's joint play
   double reciprocity_window_s = 10.0;   ///< joint play ends when the partner has not answered for this long (s, 6 y)
   double window_per_year = 0.15;        ///< relative change of that window per year of age (older sustain longer)
-  double expectation_prior = 0.7;       ///< initial expectation that the partner answers a bid
-  double expectation_rate = 0.15;       ///< update rate of that expectation per answered / unanswered bid
-  double expectation_exponent = 2.0;    ///< joint-play transition weights × expectation^exponent
-  double bid_floor = 0.2;               ///< bid rates × (floor + (1 − floor) × expectation)
+  double expectation_exponent = 2.0;    ///< joint-play transition weights × contingency^exponent
+  double bid_floor = 0.2;               ///< bid rates × (floor + (1 − floor) × contingency)
   double watch_window_s = 4.0;          ///< onlooking ends when the partner has not acted for this long (s)
 
   /// The keys of `partnership:` with their ranges (params.cpp).
@@ -178,29 +177,61 @@ struct PartnershipParams {
   bool operator==(const PartnershipParams&) const = default;
 };
 
-/// The coder (annotator): how observable behaviour becomes social-engagement labels (docs/agents.md).
+/// Contingency detection (docs/agents.md, "Contingency"): when a partner's act answers a bid, how the child
+/// estimates the partner's contingency, habituation to non-contingent attention, and interruptions of its play.
+struct ContingencyParams {
+  double response_window_s = 3.0;       ///< a partner act answers my bid only within this time after it (s)
+  double about_distance_m = 0.12;       ///< a partner act on the tray this close to my act is about it (m)
+  double memory_s = 300.0;              ///< forgetting time constant of the bid and base-rate counts (s)
+  double prior_bids = 2.0;              ///< weight of the prior answered share, in bids
+  double prior_answered_share = 0.5;    ///< prior P(a bid is answered)
+  double prior_free_time_s = 20.0;      ///< weight of the prior base rate, in seconds of probe windows
+  double prior_base_rate_per_min = 3.0; ///< prior rate of the partner's acts that could answer me (1/min)
+  double prior_link_probability = 0.5; ///< prior P(the partner responds to me at all), before any evidence
+  double non_contingent_weight = 0.3;   ///< motivating effect of fresh non-contingent attention, relative to a response
+  double habituation_rate = 0.3;        ///< each non-contingent stimulus multiplies its salience by (1 − rate)
+  double habituation_recovery_s = 600.0;///< salience recovers towards 1 with this time constant (s)
+  double interruption_tau_s = 60.0;     ///< time constant of the interruption level (s)
+  double interruption_threshold = 4.0;  ///< interruption level tolerated before each further one lowers motivation
+  double interruption_drop = 0.05;      ///< motivation fall per interruption above the threshold (× M)
+
+  /// The keys of `contingency:` with their ranges (params.cpp).
+  template <typename Archive>
+  void visit(Archive& a);
+  /// Equal when every parameter is.
+  bool operator==(const ContingencyParams&) const = default;
+};
+
+/// The coder (annotator): how observable behaviour becomes labels (docs/agents.md, "The coder").
 struct CoderParams {
-  double answer_window_s = 5.0;   ///< an act of attention answers the partner's within this time (s)
-  double exchange_hold_s = 10.0;  ///< an exchange keeps both children associative/cooperative this long (s)
-  double joint_act_hold_s = 12.0; ///< a joint act (on the partner's item or area) marks cooperation this long (s)
-  double active_window_s = 6.0;   ///< a child touched the screen within this time counts as playing (s)
-  double watch_share = 0.5;       ///< share of the last `watch_window_s` spent watching the partner's play
-  double watch_window_s = 4.0;    ///< window of that share (s)
-  double min_bout_s = 3.0;        ///< a new label must hold this long before the coder switches to it (s)
-  double joint_distance_m = 0.12; ///< a touch this close to the partner's recent touch is on the partner's area
-  double task_min_bout_s = 4.5;   ///< task engagement: a new label must hold this long before the coder switches (s)
-  double evidence_hold_s = 3.0;   ///< an act (a drag, a scribble, a friendly word) counts as recent this long (s)
+  double answer_window_s = 5.0;      ///< words to the other within this time after its words answer them (s)
+  double follow_window_s = 10.0;     ///< an act on what the other just moved, or at the spot it just played, within
+                                     ///< this time follows its activity (s)
+  double joint_distance_m = 0.08;    ///< a spot this close to the other's is the other's spot (m)
+  double talk_play_window_s = 10.0;  ///< words to the other are about the play while either played this recently (s)
+  double interaction_window_s = 20.0;///< associative: the child's acts of interaction are judged over this window (s)
+  double cooperation_window_s = 20.0;///< cooperative: turn-taking on one scene is judged over this window (s)
+  double cooperation_hold_s = 10.0; ///< cooperation goes on while both followed or spoke to the other this recently (s)
+  double discussion_hold_s = 10.0;   ///< taking part in talk about what to do next shows cooperation this long (s)
+  double active_window_s = 6.0;      ///< a child touched the screen within this time counts as playing (s)
+  double watch_share = 0.5;          ///< share of the last `watch_window_s` spent watching the other's play
+  double watch_window_s = 4.0;       ///< window of that share (s)
+  double min_bout_s = 3.0;           ///< a new label must hold this long before the coder switches to it (s)
+  double task_min_bout_s = 4.5;      ///< task engagement: a new label must hold this long before the coder switches (s)
+  double stroke_min_s = 0.4;         ///< a touch on the map held this long draws (in the last colour picked) (s)
+  double evidence_hold_s = 3.0;      ///< an act (a drag, a scribble, a friendly word) counts as recent this long (s)
   double judgement_window_s = 10.0;  ///< the coder judges play and attitude over running shares of this window (s)
-  double play_share = 0.2;        ///< below this running share of recent play (of any kind) a child is not playing
-  double friendly_share = 0.3;    ///< from this running share of recent friendly acts on, the attitude is prosocial
-  double interaction_hold_s = 20.0;  ///< an exchange shows a prosocial (or assertive) attitude this long (s)
-  double adult_hold_s = 5.0;      ///< a look or a word to the experimenter shows adult seeking this long (s)
+  double play_share = 0.2;           ///< below this running share of recent play (of any kind) a child is not playing
+  double friendly_share = 0.3;       ///< from this running share of recent friendly acts on, the attitude is prosocial
+  double interaction_hold_s = 20.0;  ///< an act of interaction shows a prosocial (or assertive) attitude this long (s)
+  double adult_hold_s = 5.0;         ///< a look or a word to the experimenter shows adult seeking this long (s)
   double attitude_min_bout_s = 6.0;  ///< social attitude: a new label must hold this long before the coder switches (s)
   double salient_min_bout_s = 2.0;   ///< the same for the salient attitudes, frustrated and adversarial (s)
-  double take_window_s = 10.0;    ///< an item the other player held this recently is still the other's (s)
+  double anchoring = 0.0;            ///< a new label must also hold this share of the bout it ends (long bouts anchor)
+  double take_window_s = 10.0;       ///< an item the other player held this recently is still the other's (s)
   double adversarial_hold_s = 6.0;   ///< taking the other's item shows an adversarial attitude this long (s)
-  double frustrated_hold_s = 3.0; ///< a protest shows frustration this long (s)
-  double assertive_hold_s = 6.0;  ///< a proposal or request to the other (directing its play) shows assertiveness this long (s)
+  double frustrated_hold_s = 3.0;    ///< a protest shows frustration this long (s)
+  double assertive_hold_s = 6.0;     ///< a proposal or request to the other (directing its play) shows assertiveness (s)
 
   /// The keys of `coder:` with their ranges (params.cpp).
   template <typename Archive>
@@ -218,6 +249,7 @@ struct ChildModelParams {
   ExpressionParams expression;               ///< gaze and speech
   TraitParams traits;                        ///< personality traits of sampled children
   PartnershipParams partnership;             ///< reciprocity and answering
+  ContingencyParams contingency;             ///< contingency detection, habituation, interruptions
   CoderParams coder;                         ///< the annotator's rules
   double session_cap_s = 2400.0;             ///< the protocol's 40-minute cap (s)
 

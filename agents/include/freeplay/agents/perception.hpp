@@ -98,7 +98,6 @@ struct PartnerView {
   GazeTarget gaze;                        ///< where the partner looks (PartnerFace = at me)
   std::optional<SpeechEvent> speech;      ///< an utterance that started this tick
   bool speaking = false;                  ///< an utterance is under way
-  bool wants_to_stop = false;             ///< the partner told the experimenter it wants to stop
 };
 
 /// Everything one child perceives at one tick.
