@@ -148,10 +148,8 @@ void ChildAgent::observe(double t, double dt, const ChildPerception& seen) {
     motivation_ -= params_->drives.unanswered_bid_drop * motivation_;
     // "Frustrated: reluctant or refusing to engage ... because of a perceived lack of fairness or attention from
     // their peer" (the coding scheme): a bid left unanswered may make the child frustrated (it protests).
-    if (labels_.attitude != SocialAttitude::Frustrated && !quit_ &&
-        rng_.bernoulli(params_->reactions.unanswered_frustration_probability)) {
-      switch_label(Axis::SocialAttitude, static_cast<std::size_t>(SocialAttitude::Frustrated), t);
-    }
+    // A child already frustrated says so again at a further slight.
+    if (!quit_ && rng_.bernoulli(params_->reactions.unanswered_frustration_probability)) become_frustrated(t);
   }
   counters_.bids_answered += contingency_.take_answered();
   counters_.contingency_s += dt * contingency_.contingency();
@@ -254,6 +252,14 @@ void ChildAgent::on_attention(double weight) {
   if (contingency_.on_interruption() > c.interruption_threshold) motivation_ -= c.interruption_drop * motivation_;
 }
 
+void ChildAgent::become_frustrated(double t) {
+  if (labels_.attitude == SocialAttitude::Frustrated) {
+    protest_pending_ = true;
+  } else {
+    switch_label(Axis::SocialAttitude, static_cast<std::size_t>(SocialAttitude::Frustrated), t);
+  }
+}
+
 void ChildAgent::on_item_taken(double t) {
   ++counters_.items_taken;
   const DriveParams& d = params_->drives;
@@ -272,7 +278,11 @@ void ChildAgent::on_item_taken(double t) {
     if ((u -= weights[0]) >= 0.0) next = (u - weights[1] < 0.0) ? SocialAttitude::Adversarial : SocialAttitude::Assertive;
     ++counters_.reactions_to_taking;
     if (next == SocialAttitude::Adversarial && rng_.bernoulli(r.retaliation_probability)) retaliation_pending_ = true;
-    if (next != labels_.attitude) switch_label(Axis::SocialAttitude, static_cast<std::size_t>(next), t);
+    if (next == SocialAttitude::Frustrated) {
+      become_frustrated(t);
+    } else if (next != labels_.attitude) {
+      switch_label(Axis::SocialAttitude, static_cast<std::size_t>(next), t);
+    }
   }
 }
 

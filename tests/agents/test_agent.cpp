@@ -287,6 +287,31 @@ TEST(ChildAgent, BidsLeftUnansweredCanFrustrate) {
   EXPECT_GT(protests(0.3), 10);
 }
 
+TEST(ChildAgent, AFrustratedChildProtestsAgainAtAFurtherSlight) {
+  // Frustration is "reluctant or refusing to engage ... because of a perceived lack of fairness or attention": a
+  // child who stays frustrated says so again when a further bid goes unanswered, not only when it became frustrated.
+  ChildModelParams p = params();
+  p.reactions.unanswered_frustration_probability = 0.3;
+  p.axis(Axis::SocialAttitude).dwell_median_s[static_cast<std::size_t>(SocialAttitude::Frustrated)] = 1e6;
+  int protests = 0;
+  int children = 0;
+  for (std::uint64_t seed = 0; seed < 20; ++seed) {
+    ChildProfile profile;
+    profile.age_years = 6;
+    ChildAgent child(p, profile, Seat::Bottom, Rng(seed));
+    TestWorld world;
+    ChildPerception seen;
+    for (int tick = 0; tick < 6000 && !child.wants_to_stop(); ++tick) {
+      world.perceive(seen);
+      world.apply(tick * 0.1, child.step(tick * 0.1, 0.1, seen));
+    }
+    protests += world.protests;
+    ++children;
+  }
+  // Once frustrated the child never leaves the label here, so one protest per child is all it would say otherwise.
+  EXPECT_GT(protests, 2 * children);
+}
+
 TEST(ChildAgent, SameSeedSameChild) {
   const SessionResult a = simulate_session(params(), SessionConfig{}, 99);
   const SessionResult b = simulate_session(params(), SessionConfig{}, 99);

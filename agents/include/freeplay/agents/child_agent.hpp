@@ -91,6 +91,7 @@ class ChildAgent {
   void on_attention(double weight);
   bool busy_with_own_play() const;
   void on_item_taken(double t);
+  void become_frustrated(double t);
   void update_drives(double t, double dt);
   void maybe_quit(double t, double dt);
   void advance_labels(double t);
