@@ -11,6 +11,7 @@ ContingencyDetector::ContingencyDetector(const ContingencyParams& params) : para
 void ContingencyDetector::advance(double t, double dt) {
   const ContingencyParams& p = *params_;
   const double keep = p.memory_s > 0.0 ? std::exp(-dt / p.memory_s) : 0.0;
+  cached_.valid = false;
   for (Rates& r : rates_) {
     r.bids *= keep;
     r.answered *= keep;
@@ -67,6 +68,7 @@ bool ContingencyDetector::open_of(BidKind kind) const {
 
 void ContingencyDetector::close(const OpenBid& bid) {
   Rates& r = rates_[static_cast<std::size_t>(bid.kind)];
+  cached_.valid = false;
   r.bids += 1.0;
   r.window_s += bid.closes - bid.opened;
   if (bid.answered) {
@@ -216,9 +218,23 @@ double ContingencyDetector::attributable_share() const {
 }
 
 double ContingencyDetector::contingency() const {
-  return link_probability() * weighted([this](const Rates& r) {
+  if (!cached_.valid) cached_ = estimate();
+  return cached_.contingency;
+}
+
+double ContingencyDetector::link_probability() const {
+  if (!cached_.valid) cached_ = estimate();
+  return cached_.link;
+}
+
+ContingencyDetector::Estimates ContingencyDetector::estimate() const {
+  Estimates e;
+  e.valid = true;
+  e.link = causal_support_link();
+  e.contingency = e.link * weighted([this](const Rates& r) {
     return shrunk(r, [](double p1, double p0) { return p0 < 1.0 ? std::clamp((p1 - p0) / (1.0 - p0), 0.0, 1.0) : 0.0; });
   });
+  return e;
 }
 
 namespace {
@@ -228,7 +244,7 @@ double log_beta(double a, double b) { return std::lgamma(a) + std::lgamma(b) - s
 
 }  // namespace
 
-double ContingencyDetector::link_probability() const {
+double ContingencyDetector::causal_support_link() const {
   // Causal support (Griffiths & Tenenbaum 2005): the log Bayes factor of two answer rates (after my bids, and in
   // the probe windows without them), each with a uniform prior, against one rate for both. The Occam penalty of
   // the second rate makes a partner whose acts are as frequent after my bids as without them *less* likely to be

@@ -136,6 +136,18 @@ class ContingencyDetector {
   bool have_play_ = false;
   int unanswered_new_ = 0;
   int answered_new_ = 0;
+  /// The estimates computed from the counts, kept until the counts change (advance, close): they are read
+  /// several times per tick and each costs 27 lgamma calls.
+  struct Estimates {
+    bool valid = false;
+    double link = 0.0;
+    double contingency = 0.0;
+  };
+  mutable Estimates cached_;
+  /// link_probability() computed from the counts (causal support).
+  double causal_support_link() const;
+  /// Computes link_probability() and contingency() from the counts.
+  Estimates estimate() const;
 };
 
 }  // namespace freeplay::agents
