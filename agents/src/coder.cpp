@@ -57,6 +57,20 @@ int PairCoder::RecentActs::since(double from) const {
   return n;
 }
 
+double PairCoder::RecentActs::first_since(double from) const {
+  double first = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < std::min(count, kRecentActs); ++k) {
+    if (t[k] >= from) first = std::min(first, t[k]);
+  }
+  return first;
+}
+
+double PairCoder::cooperation_opened(double t, int who) const {
+  const Track& me = tracks_[static_cast<std::size_t>(who)];
+  const double from = t - params_.cooperation_window_s;
+  return me.follows.first_since(from);
+}
+
 void PairCoder::track(double t, double dt, int who, const ObservedPlayer& self) {
   Track& me = tracks_[static_cast<std::size_t>(who)];
   const Track& them = tracks_[static_cast<std::size_t>(1 - who)];
@@ -336,7 +350,7 @@ SocialEngagement PairCoder::joins_in(double t, int who, SocialEngagement mine, S
   return mine;
 }
 
-void PairCoder::code(double t, int who, Axis axis, std::uint8_t label) {
+void PairCoder::code(double t, int who, Axis axis, std::uint8_t label, double opened) {
   Coded& c = coded_[static_cast<std::size_t>(who)][static_cast<std::size_t>(axis)];
   if (label == c.label) {
     c.candidate = label;
@@ -356,8 +370,10 @@ void PairCoder::code(double t, int who, Axis axis, std::uint8_t label) {
   if (t - c.candidate_since < min_bout) return;
   // A long bout anchors the coder: a new (not salient) label must also last a share of the bout it would end.
   if (!salient && t - c.candidate_since < params_.anchoring * (c.candidate_since - c.bout_start)) return;
-  // The coder marks the new sequence from where it visibly began.
-  const double start = std::max(c.candidate_since, c.bout_start);
+  // The coder marks the new sequence from where it visibly began: a cooperation from its opening move (the child
+  // joining the other's activity), which a coder recognises only in retrospect; a short bout that lies wholly
+  // after it is part of the cooperation.
+  const double start = std::max(std::min(c.candidate_since, opened), c.bout_start);
   if (start > c.bout_start) c.timeline.push_back({axis, c.label, c.bout_start, start});
   c.label = label;
   c.bout_start = start;
@@ -386,9 +402,10 @@ void PairCoder::observe(double t, const ObservedPlayer& first, const ObservedPla
                                                second_is_robot_ ? SocialEngagement::Solitary : candidate(t, 1)};
   for (int who = 0; who < players; ++who) {
     code(t, who, Axis::TaskEngagement, static_cast<std::uint8_t>(task_candidate(t, who)));
-    code(t, who, Axis::SocialEngagement,
-         static_cast<std::uint8_t>(joins_in(t, who, own[static_cast<std::size_t>(who)],
-                                            own[static_cast<std::size_t>(1 - who)])));
+    const SocialEngagement social =
+        joins_in(t, who, own[static_cast<std::size_t>(who)], own[static_cast<std::size_t>(1 - who)]);
+    code(t, who, Axis::SocialEngagement, static_cast<std::uint8_t>(social),
+         social == SocialEngagement::Cooperative ? cooperation_opened(t, who) : std::numeric_limits<double>::infinity());
     code(t, who, Axis::SocialAttitude, static_cast<std::uint8_t>(attitude_candidate(t, who)));
   }
 }

@@ -498,6 +498,30 @@ Vignette peer_answers_in_words() {
            never(kYellow, Cooperative, 15, 80)}};
 }
 
+Vignette onlooker_joins_the_play() {
+  return {"ChildWatchesThenJoinsThePartnersZoo",
+          "the yellow child builds a zoo in the middle; from 6 s the purple child stops and watches it; at 30 s purple "
+          "joins it — brings its lion, then its zebra beside the animals yellow just placed, and from 37 s they build "
+          "it together in turns, talking about it (entry by watching first: Corsaro 1979); the cooperation is coded from purple's "
+          "joining move, not after a stretch of play alongside",
+          sentences({scheme::kOnlooker, scheme::kCooperative}),
+          false, 90.0,
+          [](Script& s) {
+            arrange(s.yellow(), {"giraffe", "hippo", "crocodile"}, kScene + Vec2{0.03, 0.02}, 1.0, 29.0, 4.0);
+            arrange(s.purple(), {"lion"}, kPurpleArea, 1.0, 6.0);
+            s.purple().watch_partner(23.5).at(6.0);
+            // Purple joins without a word first: its animals go beside the ones yellow just placed.
+            s.yellow().drag("boy", {0.50, -0.04}, kScene + Vec2{0.06, 0.02}).at(29.5);
+            s.purple().drag("lion", kPurpleArea, kScene + Vec2{0.04, 0.0}).at(31.0);
+            s.yellow().drag("girl", {0.50, -0.04}, kScene + Vec2{0.02, 0.03}).at(33.0);
+            s.purple().drag("zebra", kPurpleArea, kScene + Vec2{0.0, 0.02}).at(34.5);
+            s.yellow().watch_partner(1.5).at(34.5);
+            build_zoo_together(s.purple(), s.yellow(), 37.0, 90.0);
+          },
+          {mostly(kPurple, Onlooker, 12, 30), mostly(kPurple, Cooperative, 32, 90), never(kPurple, Parallel, 30, 90),
+           never(kPurple, Solitary, 30, 90)}};
+}
+
 std::vector<Vignette> social_vignettes() {
   return {robot_says_wow_on_a_timer(),
           timetable_mover_robot(),
@@ -524,7 +548,8 @@ std::vector<Vignette> social_vignettes() {
           child_glances_back_at_peer(),
           child_and_robot_discuss(),
           child_shares_with_robot(),
-          peer_answers_in_words()};
+          peer_answers_in_words(),
+          onlooker_joins_the_play()};
 }
 
 }  // namespace

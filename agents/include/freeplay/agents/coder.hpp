@@ -8,6 +8,7 @@
 // both children.
 
 #include <array>
+#include <limits>
 #include <cmath>
 #include <cstdint>
 #include <optional>
@@ -67,6 +68,8 @@ class PairCoder {
     std::size_t count = 0;
     void add(double time);
     int since(double from) const;
+    /// The earliest kept act at or after `from` (+∞ when none).
+    double first_since(double from) const;
     double last() const { return count == 0 ? -1e9 : t[(count - 1) % kRecentActs]; }
   };
   static std::array<Vec2, 10> unplaced() {
@@ -137,7 +140,13 @@ class PairCoder {
   SocialEngagement joins_in(double t, int who, SocialEngagement mine, SocialEngagement theirs) const;
   TaskEngagement task_candidate(double t, int who) const;
   SocialAttitude attitude_candidate(double t, int who) const;
-  void code(double t, int who, Axis axis, std::uint8_t label);
+  /// Codes `label` for `who` on `axis` at `t` once it has held its minimum bout; the new bout starts where its
+  /// sequence visibly began: when the label became the candidate, or `opened` when that is earlier (the opening
+  /// move of a cooperation), never before the bout it ends.
+  void code(double t, int who, Axis axis, std::uint8_t label, double opened = std::numeric_limits<double>::infinity());
+  /// When the cooperation `who` is coded into at `t` visibly began: its own first act of following the other's
+  /// activity within `cooperation_window_s`.
+  double cooperation_opened(double t, int who) const;
 
   CoderParams params_;
   bool second_is_robot_;
