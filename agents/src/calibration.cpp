@@ -39,6 +39,14 @@ constexpr std::array<std::array<double, 5>, 5> kSocialTransitionTarget = {{
 }};
 constexpr std::array<double, kAxisCount> kChangesPerMinTarget = {1.54, 1.00, 1.62};
 
+}  // namespace
+
+double bout_median_target_s(Axis axis, std::size_t label) {
+  return kBoutMedianTarget[static_cast<std::size_t>(axis)][label];
+}
+
+namespace {
+
 /// Half-width of a label share's acceptance band: ±.05 for common labels, half the target for rare ones (so that
 /// a rare label such as `adversarial` (.012) can fail low as well as high), never below ±.01.
 double share_half_width(double target) { return std::clamp(0.5 * target, 0.01, 0.05); }

@@ -107,14 +107,17 @@ struct FitResult {
 };
 
 /// The fitting loss over the given targets only: every checked child-child row and the child-robot duration rows,
-/// each as its distance to the target in units of the band's half-width, squared, plus a steep penalty beyond 0.8 of
+/// each as its distance to the target in units of the band's half-width, squared, plus a steep penalty beyond 0.6 of
 /// it; the child-child label changes per minute (no band) enter with a light weight. Child-robot label statistics
 /// never enter (they are predictions). `outside` receives the number of checked rows outside their bands.
 double fit_loss(const std::vector<ComparisonRow>& rows, int* outside = nullptr);
 
+/// PInSoRo's child-child median bout of `label` on `axis` (pinsoro-targets.md §4), in seconds.
+double bout_median_target_s(Axis axis, std::size_t label);
+
 /// Simulated method of moments (docs/agents.md, "Fitting"): a coordinate search (each parameter stepped up and down
 /// on its own scale, steps growing on success and shrinking on failure) over the entry biases and dwell medians of
-/// the three axes and the drive, partnership and expression parameters listed in fit.cpp, minimising fit_loss with
+/// the three axes (a dwell median within a factor of 3 of its label's PInSoRo bout median) and the drive, partnership and expression parameters listed in fit.cpp, minimising fit_loss with
 /// common random numbers (the same seeds for every evaluation).
 FitResult fit_child_model(const ChildModelParams& start, const FitOptions& options);
 
