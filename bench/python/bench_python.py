@@ -6,7 +6,9 @@
    wall second on one worker;
 2. Env.step: wall time per decision of an Env rollout minus that of the same episodes run by `idle` in C++;
 3. VecEnv with 1 and 2 environments: decisions per wall second, beside the C++ engine's own scaling from 1 to 2
-   workers on the same episodes (what this machine allows at the moment: a VecEnv cannot scale better);
+   workers on the same episodes (what this machine allows at the moment: a VecEnv cannot scale better), with the
+   default reward (built-in: computed in C++ inside the batched step) and with a Python callable (called per
+   environment and step);
 Wall-clock numbers: run on a quiet machine and report them with the machine.
 """
 
@@ -55,9 +57,14 @@ def env_rollouts(env, episodes):
     return time.perf_counter() - start, steps
 
 
-def vec_rate(scenario, overrides, n, steps):
+def python_reward(step):
+    """A reward written in Python (VecEnv calls it once per environment and step)."""
+    return step.dt
+
+
+def vec_rate(scenario, overrides, n, steps, reward=None):
     """Decisions per wall second of a VecEnv of n environments doing nothing."""
-    vec = freeplay.VecEnv(n, scenario, overrides)
+    vec = freeplay.VecEnv(n, scenario, overrides, reward=reward)
     vec.reset(seed=1)
     start = time.perf_counter()
     for _ in range(steps):
@@ -71,25 +78,33 @@ def main():
     parser.add_argument("--scenario", default=os.path.join(os.path.dirname(__file__), "..", "..", "scenarios",
                                                              "child-robot-asocial.yaml"))
     parser.add_argument("--vec-steps", type=int, default=3000)
+    parser.add_argument("--python-reward", action="store_true",
+                        help="also time VecEnv with a reward written in Python")
+    parser.add_argument("--vec-only", action="store_true", help="only the C++ engine's 1 -> 2 workers and VecEnv")
     args = parser.parse_args()
     short = ["protocol.greeting_s=0", "protocol.tutorial_s=1", "protocol.debriefing_s=0"]
 
     timed_run(args.scenario, short + ["robot.policy=idle"], 1, repetitions=1)  # loads the shared models once
     cpp_wall, cpp_sim = timed_run(args.scenario, short + ["robot.policy=idle"], args.episodes)
-    py_wall, py_sim = timed_run(args.scenario, short + ["robot.policy=python:bench_python:Trivial"], args.episodes)
-    print(f"free play, 1 worker, {args.episodes} episodes: C++ idle {cpp_sim / cpp_wall:,.0f}x real time; "
-          f"Python trivial {py_sim / py_wall:,.0f}x real time; ratio {py_wall / cpp_wall:.2f}")
-
-    env = freeplay.Env(args.scenario, short + ["robot.policy=idle"])
-    env_wall, steps = min(env_rollouts(env, args.episodes) for _ in range(3))
-    print(f"Env: {steps} steps in {env_wall:.2f} s; C++ idle run of the same episodes {cpp_wall:.2f} s; "
-          f"overhead {(env_wall - cpp_wall) / steps * 1e6:.1f} us per step")
+    if not args.vec_only:
+        py_wall, py_sim = timed_run(args.scenario, short + ["robot.policy=python:bench_python:Trivial"],
+                                    args.episodes)
+        print(f"free play, 1 worker, {args.episodes} episodes: C++ idle {cpp_sim / cpp_wall:,.0f}x real time; "
+              f"Python trivial {py_sim / py_wall:,.0f}x real time; ratio {py_wall / cpp_wall:.2f}")
+        env = freeplay.Env(args.scenario, short + ["robot.policy=idle"])
+        env_wall, steps = min(env_rollouts(env, args.episodes) for _ in range(3))
+        print(f"Env: {steps} steps in {env_wall:.2f} s; C++ idle run of the same episodes {cpp_wall:.2f} s; "
+              f"overhead {(env_wall - cpp_wall) / steps * 1e6:.1f} us per step")
 
     cpp_two_wall, _ = timed_run(args.scenario, short + ["robot.policy=idle"], args.episodes, jobs=2)
     print(f"C++ idle run, 2 workers: {cpp_wall / cpp_two_wall:.2f}x the speed of 1 worker (this machine's ceiling now)")
     one = max(vec_rate(args.scenario, short, 1, args.vec_steps) for _ in range(3))
     two = max(vec_rate(args.scenario, short, 2, args.vec_steps) for _ in range(3))
     print(f"VecEnv: 1 env {one:,.0f} steps/s, 2 envs {two:,.0f} steps/s, scaling {two / one:.2f}x")
+    if args.python_reward:
+        one = max(vec_rate(args.scenario, short, 1, args.vec_steps, python_reward) for _ in range(3))
+        two = max(vec_rate(args.scenario, short, 2, args.vec_steps, python_reward) for _ in range(3))
+        print(f"VecEnv, Python reward: 1 env {one:,.0f} steps/s, 2 envs {two:,.0f} steps/s, scaling {two / one:.2f}x")
 
 
 if __name__ == "__main__":

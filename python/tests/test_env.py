@@ -89,29 +89,176 @@ def test_coded_labels_reach_the_reward(scenario):
     assert labels and set(labels[-1]["purple"]) == {"task_engagement", "social_engagement", "social_attitude"}
 
 
-def test_vec_env_equals_single_envs(scenario):
-    vec = freeplay.VecEnv(2, scenario, SHORT)
-    observations, _ = vec.reset(seed=4)
-    single = freeplay.Env(scenario, SHORT)
-    expected = []
+def expected_row(obs, info, items):
+    """What VecEnv's batched row should hold for a typed Observation and an Env info (the fields compared)."""
+    pose = numpy.full((len(items), 3), numpy.nan)
+    flags = numpy.zeros((len(items), 3), dtype=bool)
+    for item in obs.items:
+        k = items.index(item.name)
+        pose[k] = (item.pose.x, item.pose.y, item.pose.theta)
+        flags[k] = (item.touched_by_child, item.held_by_robot, item.visible)
+    touches = numpy.full((6, 2), numpy.nan)
+    for touch in obs.touches:
+        touches[touch.finger - 1] = touch.position
+    coded = [[freeplay.env.LABEL_NAMES[axis].index(labels[axis]) if labels[axis] else -1
+              for axis in freeplay.env.CODED_LABELS] for seat, labels in sorted(info["coded"].items())]
+    current = items.index(obs.self.current_item) if obs.self.current_item else -1
+    return {"t": obs.t, "pose": pose, "flags": flags, "touches": touches, "coded": coded, "current": current,
+            "reach": obs.self.arm_reach_centre, "interaction_events": tuple(obs.interaction_events),
+            "zones": [(z.colour, z.centroid.tolist()) for z in obs.zones]}
+
+
+def assert_row(observations, infos, k, expected):
+    assert observations["t"][k] == expected["t"]
+    numpy.testing.assert_array_equal(observations["item_pose"][k], expected["pose"])
+    flags = numpy.stack([observations[key][k] for key in
+                         ("item_touched_by_child", "item_held_by_robot", "item_visible")], axis=1)
+    numpy.testing.assert_array_equal(flags, expected["flags"])
+    numpy.testing.assert_array_equal(observations["touch_position"][k], expected["touches"])
+    numpy.testing.assert_array_equal(observations["touch_active"][k], ~numpy.isnan(expected["touches"][:, 0]))
+    numpy.testing.assert_array_equal(observations["self_arm_reach_centre"][k], expected["reach"])
+    assert observations["self_current_item"][k] == expected["current"]
+    assert observations["interaction_events"][k] == expected["interaction_events"]
+    assert [(z.colour, z.centroid.tolist()) for z in observations["zones"][k]] == expected["zones"]
+    if expected["coded"]:
+        assert infos["coded"][k].tolist() == expected["coded"]
+
+
+def without(record, keys):
+    """`record` without `keys`."""
+    return {key: value for key, value in record.items() if key not in keys}
+
+
+def single_rollout(scenario, seed, episode, reward, steps_limit=None):
+    """Env rollout of one episode with Mover: per step (row expectation, reward, terminated, truncated, events),
+    and the final info."""
+    env = freeplay.Env(scenario, SHORT, reward=reward)
+    obs, info = env.reset(seed=seed, options={"episode": episode})
+    policy = Mover()
+    policy.reset(info["context"], info["rng"])
+    items = list(info["context"].item_names)
+    steps = [(expected_row(obs, info, items), None, False, False, info["events"])]
+    while True:
+        obs, value, terminated, truncated, info = env.step(policy.decide(obs))
+        steps.append((expected_row(obs, info, items), value, terminated, truncated, info["events"]))
+        if terminated or truncated:
+            return steps, info
+
+
+def test_vec_env_rows_equal_single_envs_with_the_same_seeds(scenario):
+    """Environment k of a VecEnv reset with seed s plays what Env plays for episode k of seed s: the same
+    observations (batched row by row), rewards, ends, events and record; then it restarts with episode n + …"""
+    reward = freeplay.rewards.coded_joint_play
+    expected = [single_rollout(scenario, 4, k, reward) for k in range(2)]
+    vec = freeplay.VecEnv(2, scenario, SHORT, reward=reward)
+    assert vec.native_reward == "coded_joint_play"
+    items = list(vec.item_names)
+    observations, infos = vec.reset(seed=4)
+    policies = []
     for k in range(2):
-        single.reset(seed=4, options={"episode": k})
-        steps = 0
-        while True:
-            *_, term, trunc, _ = single.step([])
-            steps += 1
-            if term or trunc:
-                break
-        expected.append(steps)
-    counts, done = [0, 0], [None, None]
-    while None in done:
-        observations, rewards, terminated, truncated, infos = vec.step([[], []])
+        policy = Mover()
+        policy.reset(infos["context"][k], infos["rng"][k])
+        policies.append(policy)
+        assert_row(observations, infos, k, expected[k][0][0][0])
+        assert infos["episode"][k] == k and infos["seed"][k] == freeplay.episode_seed(4, k)
+    done = [False, False]
+    step = 0
+    while not all(done):
+        step += 1
+        actions = [policies[k].decide(vec.observation(k)) if not done[k] else [] for k in range(2)]
+        observations, rewards, terminated, truncated, infos = vec.step(actions)
+        assert rewards.dtype == numpy.float64 and terminated.dtype == bool
         for k in range(2):
-            counts[k] += 1
-            if done[k] is None and (terminated[k] or truncated[k]):
-                done[k] = counts[k]
-                assert "final_info" in infos[k]
-    assert done == expected
+            if done[k]:
+                continue
+            row, value, term, trunc, events = expected[k][0][step]
+            assert (rewards[k], terminated[k], truncated[k]) == (value, term, trunc)
+            if term or trunc:  # the row holds the next episode's start; final_* the end
+                done[k] = True
+                assert infos["_final_info"][k] and infos["_final_observation"][k]
+                wall = {"wall_s"}  # the record's wall-clock time differs from run to run
+                assert (without(infos["final_info"][k]["record"], wall) == without(expected[k][1]["record"], wall))
+                assert infos["final_info"][k]["events"] == events
+                final = infos["final_observation"][k]
+                assert final["t"] == row["t"]
+                numpy.testing.assert_array_equal(final["item_pose"], row["pose"])
+                assert infos["episode"][k] == 2 + sum(done) - 1  # restarted with the next episode index
+                assert infos["_context"][k] and infos["rng"][k] is not None
+                assert_row(observations, infos, k, expected_row(vec.observation(k), {"coded": {}}, items))
+            else:
+                assert_row(observations, infos, k, row)
+                assert (infos["events"][k] or []) == events and infos["_events"][k] == bool(events)
+
+
+def test_batched_layout(scenario):
+    vec = freeplay.VecEnv(3, scenario, SHORT, perceives_children=True)
+    observations, infos = vec.reset(seed=2)
+    for _ in range(20):
+        observations, rewards, terminated, truncated, infos = vec.step([[], [], []])
+    layout = vec.single_observation_layout
+    assert set(observations) == set(layout)
+    for key, (shape, dtype, _) in layout.items():
+        if shape is None:
+            assert isinstance(observations[key], tuple) and len(observations[key]) == 3
+        else:
+            assert observations[key].shape == (3, *shape) and observations[key].dtype == numpy.dtype(dtype), key
+    assert vec.item_names == tuple(freeplay.Env(scenario, SHORT).reset(seed=2)[1]["context"].item_names)
+    assert vec.child_seats == ("purple",) and observations["child_perceived"].any()
+    assert infos["coded"].shape == (3, 1, 3) and infos["coded"].dtype == numpy.int8
+    assert rewards.shape == terminated.shape == truncated.shape == (3,)
+    assert infos["t"] is observations["t"] and numpy.all(observations["t"] > 0)
+    for k in range(3):  # the perceived child as the typed observation has it
+        (child,) = vec.observation(k).children
+        assert observations["child_seconds_since_touch"][k, 0] == child.seconds_since_touch
+        assert observations["child_gaze"][k, 0] == int(child.gaze)
+
+
+def test_vec_env_calls_a_python_reward_per_environment(scenario):
+    """A Python callable is called once per environment and step with that environment's Step, and gives what the
+    built-in reward computed in C++ gives."""
+    calls = []
+
+    def joint(step):
+        calls.append(step.observation.t)
+        social = [labels.get("social_engagement") for labels in step.coded.values()]
+        return step.dt if any(label in freeplay.rewards.JOINT_PLAY for label in social) else 0.0
+
+    python = freeplay.VecEnv(2, scenario, SHORT, reward=joint)
+    native = freeplay.VecEnv(2, scenario, SHORT, reward=freeplay.rewards.coded_joint_play)
+    assert python.native_reward is None
+    python.reset(seed=8)
+    native.reset(seed=8)
+    total, steps = 0.0, 0
+    while steps < 100 or (total == 0.0 and steps < 2400):
+        a = python.step([[], []])
+        b = native.step([[], []])
+        numpy.testing.assert_array_equal(a[1], b[1])
+        total += b[1].sum()
+        steps += 1
+    assert len(calls) == 2 * steps
+    assert total > 0.0  # the children were coded as playing together at times: the formula was exercised
+
+
+def test_builtin_rewards_over_a_step():
+    step = freeplay.env.Step(observation=None, coded={"purple": {"social_engagement": "cooperative"}})
+    assert freeplay.rewards.coded_joint_play(step) == pytest.approx(0.1)
+    assert freeplay.rewards.session_length(step) == pytest.approx(0.1)
+    assert freeplay.rewards.zero(step) == 0.0
+    step.coded = {"purple": {"social_engagement": "parallel"}}
+    assert freeplay.rewards.coded_joint_play(step) == 0.0
+    assert freeplay.rewards.JOINT_PLAY == ("associative", "cooperative")
+
+
+def test_vec_env_bad_actions_raise(scenario):
+    vec = freeplay.VecEnv(2, scenario, SHORT)
+    with pytest.raises(RuntimeError):
+        vec.step([[], []])
+    vec.reset(seed=1)
+    with pytest.raises(freeplay.InputError):
+        vec.step([[]])
+    with pytest.raises(freeplay.InputError):
+        vec.step([[], ["dance"]])
+    vec.step([[], []])  # still usable
 
 
 HIDDEN = {"labels", "motivation", "boredom", "answer_expectation", "wants_to_stop"}
@@ -156,4 +303,7 @@ def test_hidden_child_state_on_explicit_request(scenario):
     assert all(s is not None for s in seen)
     vec = freeplay.VecEnv(1, scenario, SHORT, privileged=True)
     _, infos = vec.reset(seed=3)
-    assert "purple" in vec.step([[]])[4][0]["privileged"]
+    hidden = vec.step([[]])[4]["privileged"]
+    assert set(hidden) == HIDDEN and hidden["motivation"].shape == (1, 1)
+    assert 0.0 <= hidden["motivation"][0, 0] <= 1.0 and hidden["labels"].shape == (1, 1, 3)
+    assert "privileged" not in freeplay.VecEnv(1, scenario, SHORT).reset(seed=3)[1]
