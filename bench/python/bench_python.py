@@ -43,6 +43,15 @@ def timed_run(scenario, overrides, episodes, jobs=1, repetitions=3):
     return best, simulated
 
 
+def alternating(first, second, best, repetitions=3):
+    """(best of `first`, best of `second`) over `repetitions` alternating calls of each."""
+    a, b = [], []
+    for _ in range(repetitions):
+        a.append(first())
+        b.append(second())
+    return best(a), best(b)
+
+
 def env_rollouts(env, episodes):
     """Wall seconds and steps of Env rollouts of episodes 0…episodes-1 (seed 1) that do nothing."""
     steps = 0
@@ -85,8 +94,8 @@ def main():
     short = ["protocol.greeting_s=0", "protocol.tutorial_s=1", "protocol.debriefing_s=0"]
 
     timed_run(args.scenario, short + ["robot.policy=idle"], 1, repetitions=1)  # loads the shared models once
-    cpp_wall, cpp_sim = timed_run(args.scenario, short + ["robot.policy=idle"], args.episodes)
     if not args.vec_only:
+        cpp_wall, cpp_sim = timed_run(args.scenario, short + ["robot.policy=idle"], args.episodes)
         py_wall, py_sim = timed_run(args.scenario, short + ["robot.policy=python:bench_python:Trivial"],
                                     args.episodes)
         print(f"free play, 1 worker, {args.episodes} episodes: C++ idle {cpp_sim / cpp_wall:,.0f}x real time; "
@@ -96,15 +105,21 @@ def main():
         print(f"Env: {steps} steps in {env_wall:.2f} s; C++ idle run of the same episodes {cpp_wall:.2f} s; "
               f"overhead {(env_wall - cpp_wall) / steps * 1e6:.1f} us per step")
 
-    cpp_two_wall, _ = timed_run(args.scenario, short + ["robot.policy=idle"], args.episodes, jobs=2)
-    print(f"C++ idle run, 2 workers: {cpp_wall / cpp_two_wall:.2f}x the speed of 1 worker (this machine's ceiling now)")
-    one = max(vec_rate(args.scenario, short, 1, args.vec_steps) for _ in range(3))
-    two = max(vec_rate(args.scenario, short, 2, args.vec_steps) for _ in range(3))
+    # Each pair below alternates its two measurements (best of 3 each), so that both see the same machine load.
+    cpp_one_wall, cpp_two_wall = alternating(
+        lambda: timed_run(args.scenario, short + ["robot.policy=idle"], args.episodes, repetitions=1)[0],
+        lambda: timed_run(args.scenario, short + ["robot.policy=idle"], args.episodes, jobs=2, repetitions=1)[0],
+        min)
+    print(f"C++ idle run, 2 workers: {cpp_one_wall / cpp_two_wall:.2f}x the speed of 1 worker "
+          f"(this machine's ceiling now)")
+    one, two = alternating(lambda: vec_rate(args.scenario, short, 1, args.vec_steps),
+                           lambda: vec_rate(args.scenario, short, 2, args.vec_steps), max)
     print(f"VecEnv: 1 env {one:,.0f} steps/s, 2 envs {two:,.0f} steps/s, scaling {two / one:.2f}x")
     if args.python_reward:
-        one = max(vec_rate(args.scenario, short, 1, args.vec_steps, python_reward) for _ in range(3))
-        two = max(vec_rate(args.scenario, short, 2, args.vec_steps, python_reward) for _ in range(3))
-        print(f"VecEnv, Python reward: 1 env {one:,.0f} steps/s, 2 envs {two:,.0f} steps/s, scaling {two / one:.2f}x")
+        one, two = alternating(lambda: vec_rate(args.scenario, short, 1, args.vec_steps, python_reward),
+                               lambda: vec_rate(args.scenario, short, 2, args.vec_steps, python_reward), max)
+        print(f"VecEnv, Python reward: 1 env {one:,.0f} steps/s, 2 envs {two:,.0f} steps/s, "
+              f"scaling {two / one:.2f}x")
 
 
 if __name__ == "__main__":

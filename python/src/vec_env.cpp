@@ -183,6 +183,7 @@ struct Batch {
       : obs(make ? py::dict() : obs_), infos(make ? py::dict() : infos_) {
     const auto items = static_cast<py::ssize_t>(layout.items.size());
     const auto seats = static_cast<py::ssize_t>(layout.seats.size());
+    constexpr auto axes = static_cast<py::ssize_t>(agents::kAxisCount);
     t = column<double>(obs, "t", n, {}, make);
     item_pose = column<double>(obs, "item_pose", n, {items, 3}, make);
     item_touched = column<bool>(obs, "item_touched_by_child", n, {items}, make);
@@ -223,13 +224,13 @@ struct Batch {
     }
     episode = column<std::int64_t>(infos, "episode", n, {}, make);
     seed = column<std::uint64_t>(infos, "seed", n, {}, make);
-    coded = column<std::int8_t>(infos, "coded", n, {seats, static_cast<py::ssize_t>(agents::kAxisCount)}, make);
+    coded = column<std::int8_t>(infos, "coded", n, {seats, axes}, make);
     has_events = column<bool>(infos, "_events", n, {}, make);
     has_results = column<bool>(infos, "_results", n, {}, make);
     if (layout.privileged) {
       py::dict hidden = make ? py::dict() : py::reinterpret_borrow<py::dict>(py::object(infos["privileged"]));
       if (make) infos["privileged"] = hidden;
-      hidden_labels = column<std::int8_t>(hidden, "labels", n, {seats, static_cast<py::ssize_t>(agents::kAxisCount)}, make);
+      hidden_labels = column<std::int8_t>(hidden, "labels", n, {seats, axes}, make);
       motivation = column<double>(hidden, "motivation", n, {seats}, make);
       boredom = column<double>(hidden, "boredom", n, {seats}, make);
       answer_expectation = column<double>(hidden, "answer_expectation", n, {seats}, make);
@@ -544,7 +545,9 @@ void bind_vec_env(py::module_& m) {
   py::tuple labels(agents::kAxisCount);
   for (std::size_t a = 0; a < agents::kAxisCount; ++a) {
     py::tuple names(agents::label_count(agents::kAxes[a]));
-    for (std::size_t k = 0; k < names.size(); ++k) names[k] = py::str(std::string(agents::label_name(agents::kAxes[a], k)));
+    for (std::size_t k = 0; k < names.size(); ++k) {
+      names[k] = py::str(std::string(agents::label_name(agents::kAxes[a], k)));
+    }
     labels[a] = names;
   }
   m.attr("LABELS") = labels;  // per axis (task, social engagement, social attitude), the labels in coding order
