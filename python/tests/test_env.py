@@ -261,6 +261,15 @@ def test_vec_env_bad_actions_raise(scenario):
     vec.step([[], []])  # still usable
 
 
+def test_vec_env_reset_without_seed_plays_the_next_episodes(scenario):
+    vec = freeplay.VecEnv(2, scenario, SHORT)
+    vec.reset(seed=4)
+    _, infos = vec.reset()
+    assert infos["episode"].tolist() == [2, 3]
+    assert infos["seed"].tolist() == [freeplay.episode_seed(4, 2), freeplay.episode_seed(4, 3)]
+    vec.close()
+
+
 HIDDEN = {"labels", "motivation", "boredom", "answer_expectation", "wants_to_stop"}
 
 
