@@ -8,7 +8,6 @@
 #include <pybind11/stl.h>
 
 #include <array>
-#include <cmath>
 #include <cstdint>
 #include <exception>
 #include <initializer_list>
