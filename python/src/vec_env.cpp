@@ -446,6 +446,7 @@ class VecStepper {
   }
 
  private:
+  /// The built-in reward of decision `d` (its children's coded social-engagement labels).
   double reward_of(const Decision& d) const {
     return builtin_reward(*reward_, dt_, [&](auto&& add) {
       constexpr auto social = static_cast<std::size_t>(agents::Axis::SocialEngagement);
