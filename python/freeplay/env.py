@@ -278,14 +278,23 @@ class VecEnv:
 
     A built-in reward of :mod:`freeplay.rewards` is computed in C++ inside the step (``native_reward`` names it);
     any other callable is called once per environment and step with that environment's :class:`Step`, in Python.
+
+    Asynchronous stepping (as envpool's): :meth:`async_reset`, then :meth:`send` actions to some environments and
+    :meth:`recv` the next ``batch_size`` environments that are ready, whichever they are (``infos["env_id"]`` says
+    which); no environment waits for a slower one. Environment k then plays episodes k, k + n, k + 2n, … of the root
+    seed, whatever order the environments come back in.
     """
 
     metadata = Env.metadata
 
     def __init__(self, n, scenario, overrides=(), reward=None, perceives_children=False, privileged=False,
-                 **set_values):
+                 batch_size=None, **set_values):
         if int(n) < 1:
             raise ValueError(f"a VecEnv needs at least one environment, not {n}")
+        #: how many environments :meth:`recv` returns (1 … n; default n)
+        self.batch_size = int(n) if batch_size is None else int(batch_size)
+        if not 1 <= self.batch_size <= int(n):
+            raise ValueError(f"batch_size must be 1 to {n}, not {batch_size}")
         self.envs = [Env(scenario, overrides, reward, perceives_children, privileged, **set_values)
                      for _ in range(int(n))]
         self.num_envs = len(self.envs)
@@ -307,23 +316,51 @@ class VecEnv:
                                               1.0 / DECISION_HZ)
         self._next_index = 0
         self._started = False
+        self._async_next = None  # per environment, the episode index of its next automatic reset (async stepping)
 
     def reset(self, seed=None, options=None):
         """Starts episodes 0…n-1 of root seed ``seed`` (without a seed: the next n episodes); returns the batched
         (observations, infos); ``infos["context"]`` and ``infos["rng"]`` hold each environment's PolicyContext and
         policy Rng (object arrays)."""
-        base = 0 if seed is not None else self._next_index
-        contexts = numpy.full(self.num_envs, None, dtype=object)
-        rngs = numpy.full(self.num_envs, None, dtype=object)
-        for k, env in enumerate(self.envs):
-            _, info = env.reset(seed=seed, options={"episode": base + k})
-            contexts[k], rngs[k] = info["context"], info["rng"]
-            self._stepper.set_episode(k, env.episode_index, env.episode_seed)
-        self._next_index = base + self.num_envs
-        self._started = True
+        contexts, rngs = self._reset_all(seed)
+        self._stepper.begin(False)
         observations, infos = self._stepper.gather()
         infos["context"], infos["rng"] = contexts, rngs
         return observations, infos
+
+    def async_reset(self, seed=None, options=None):
+        """Starts episodes 0…n-1 of root seed ``seed`` (without a seed: the next n episodes) as :meth:`reset` does,
+        but returns nothing: :meth:`recv` then returns their first decisions (reward 0, ``infos["context"]`` and
+        ``infos["rng"]``). Each environment's next episodes are its index plus multiples of n."""
+        base = 0 if seed is not None else self._next_index
+        self._reset_all(seed)
+        self._stepper.begin(True)
+        self._async_next = [base + k + self.num_envs for k in range(self.num_envs)]
+
+    def send(self, actions, env_ids):
+        """Hands environment ``env_ids[j]`` the action list ``actions[j]`` and returns at once; each must have been
+        received by :meth:`recv` since its last send (or since :meth:`async_reset`)."""
+        if self._async_next is None:
+            raise RuntimeError("VecEnv.send() before async_reset()")
+        self._stepper.send(actions, [int(k) for k in numpy.atleast_1d(env_ids)])
+
+    def recv(self):
+        """Waits until ``batch_size`` environments that were sent actions (or reset by :meth:`async_reset`) are
+        ready and returns them, batched as :meth:`step` does but with rows for those environments only:
+        (observations, rewards, terminated, truncated, infos); ``infos["env_id"]`` lists their environment
+        indices. An environment whose episode ended restarts at once, as in :meth:`step`."""
+        if self._async_next is None:
+            raise RuntimeError("VecEnv.recv() before async_reset()")
+        observations, rewards_, terminated, truncated, infos, finished, reset = self._stepper.recv(self.batch_size)
+        env_ids = infos["env_id"]
+        if self.native_reward is None:
+            fresh = set(reset)
+            for row, k in enumerate(env_ids):
+                if row not in fresh:
+                    rewards_[row] = float(self.reward(self.envs[k]._step()[0]))
+        if finished or reset:
+            self._restart(finished, env_ids, observations, infos, self._next_async_episode, reset)
+        return observations, rewards_, terminated, truncated, infos
 
     def step(self, actions):
         """Steps every environment with its actions (one action list per environment); returns the batched
@@ -335,7 +372,7 @@ class VecEnv:
             for k, env in enumerate(self.envs):
                 rewards_[k] = float(self.reward(env._step()[0]))
         if finished:
-            self._restart(finished, observations, infos)
+            self._restart(finished, range(self.num_envs), observations, infos, self._next_sync_episode)
         return observations, rewards_, terminated, truncated, infos
 
     def observation(self, k):
@@ -348,28 +385,62 @@ class VecEnv:
             env.close()
         self._stepper = None
 
-    def _restart(self, finished, observations, infos):
-        """Automatic reset of the environments whose episode ended (gymnasium's ``final_*`` entries, with masks)."""
-        n = self.num_envs
+    def _reset_all(self, seed):
+        """Starts episodes base…base+n-1 of root seed ``seed`` (base 0 with a seed, else the next index); returns
+        the environments' PolicyContexts and policy Rngs (object arrays)."""
+        base = 0 if seed is not None else self._next_index
+        contexts = numpy.full(self.num_envs, None, dtype=object)
+        rngs = numpy.full(self.num_envs, None, dtype=object)
+        for k, env in enumerate(self.envs):
+            _, info = env.reset(seed=seed, options={"episode": base + k})
+            contexts[k], rngs[k] = info["context"], info["rng"]
+            self._stepper.set_episode(k, env.episode_index, env.episode_seed)
+        self._next_index = base + self.num_envs
+        self._started = True
+        self._async_next = None
+        return contexts, rngs
+
+    def _next_sync_episode(self, k):
+        """The episode index of environment k's automatic reset in :meth:`step`: the next of the VecEnv."""
+        self._next_index += 1
+        return self._next_index - 1
+
+    def _next_async_episode(self, k):
+        """The episode index of environment k's automatic reset in :meth:`recv`: its own next (k + multiples of n),
+        so that no order of the environments changes what each plays."""
+        self._async_next[k] += self.num_envs
+        return self._async_next[k] - self.num_envs
+
+    def _restart(self, finished, env_ids, observations, infos, next_episode, reset=()):
+        """Automatic reset of the environments (``env_ids[row]`` for each ``row`` of ``finished``) whose episode
+        ended (gymnasium's ``final_*`` entries, with masks); ``next_episode(k)`` gives environment k's next episode
+        index. Rows in ``reset`` (just reset by async_reset) also get their context and rng."""
+        n = len(env_ids)
         final_observation = numpy.full(n, None, dtype=object)
         final_info = numpy.full(n, None, dtype=object)
         contexts = numpy.full(n, None, dtype=object)
         rngs = numpy.full(n, None, dtype=object)
         mask = numpy.zeros(n, dtype=bool)
-        for k in finished:
+        started = numpy.zeros(n, dtype=bool)
+        for row in reset:
+            episode = self.envs[env_ids[row]]._episode
+            contexts[row], rngs[row] = episode.context, episode.policy_rng
+            started[row] = True
+        for row in finished:
+            k = int(env_ids[row])
             env = self.envs[k]
-            final_observation[k] = {key: value[k].copy() if isinstance(value, numpy.ndarray) else value[k]
-                                    for key, value in observations.items()}
-            final_info[k] = env._step()[1]
-            mask[k] = True
-            _, info = env.reset(options={"episode": self._next_index})
-            self._next_index += 1
-            contexts[k], rngs[k] = info["context"], info["rng"]
+            final_observation[row] = {key: value[row].copy() if isinstance(value, numpy.ndarray) else value[row]
+                                      for key, value in observations.items()}
+            final_info[row] = env._step()[1]
+            mask[row] = started[row] = True
+            _, info = env.reset(options={"episode": next_episode(k)})
+            contexts[row], rngs[row] = info["context"], info["rng"]
             self._stepper.set_episode(k, env.episode_index, env.episode_seed)
-            self._stepper.write_row(k, observations, infos)
-        infos.update({"final_observation": final_observation, "_final_observation": mask,
-                      "final_info": final_info, "_final_info": mask.copy(),
-                      "context": contexts, "_context": mask.copy(), "rng": rngs, "_rng": mask.copy()})
+            self._stepper.write_row(row, k, observations, infos)
+        if finished:
+            infos.update({"final_observation": final_observation, "_final_observation": mask,
+                          "final_info": final_info, "_final_info": mask.copy()})
+        infos.update({"context": contexts, "_context": started, "rng": rngs, "_rng": started.copy()})
 
 
 def _register_with_gymnasium():

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <condition_variable>
 #include <exception>
+#include <functional>
 #include <mutex>
 #include <optional>
 #include <thread>
@@ -56,6 +57,12 @@ bool poll_briefly(Done done) {
   }
   return true;
 }
+
+}  // namespace
+
+bool poll_before_sleeping(const std::function<bool()>& done) { return poll_briefly(done); }
+
+namespace {
 
 /// True when two zone lists are the same (colours, centroids and polygons).
 bool same_zones(const std::vector<policies::ZoneObservation>& a, const std::vector<policies::ZoneObservation>& b) {
@@ -143,6 +150,7 @@ std::vector<policies::Action> EnvEpisode::decide(const policies::Observation& ob
   state_ = State::Deciding;
   cv_.notify_all();
   lock.unlock();
+  if (signal_) signal_->post();
   poll_briefly([&] { return state_.load() != State::Deciding || stop_.load(); });
   lock.lock();
   cv_.wait(lock, [&] { return state_ != State::Deciding || stop_.load(); });
@@ -197,6 +205,7 @@ void EnvEpisode::work(std::uint64_t seed) {
   }
   state_ = State::Finished;
   cv_.notify_all();
+  if (signal_) signal_->post();
 }
 
 void EnvEpisode::stop_worker() {

@@ -9,7 +9,9 @@
 #include <condition_variable>
 #include <cstdint>
 #include <exception>
+#include <functional>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -36,6 +38,27 @@ struct Decision {
   std::uint64_t zones_version = 0;
 };
 
+/// Wakes a thread that waits for whichever of several episodes is ready first (VecEnv.recv): each episode that
+/// signals to it posts when it has a decision for the stepping thread or has ended.
+struct ReadySignal {
+  std::mutex mutex;
+  std::condition_variable cv;
+  std::uint64_t posts = 0;  ///< decisions and ends posted so far (guarded by `mutex`)
+
+  /// Counts one more post and wakes the waiting thread.
+  void post() {
+    {
+      std::lock_guard lock(mutex);
+      ++posts;
+    }
+    cv.notify_all();
+  }
+};
+
+/// Polls `done` briefly (yielding the core between tries) when the episode workers fit the machine's cores, as the
+/// two sides of an episode do before they sleep; true when `done` became true (env.cpp holds the rule).
+bool poll_before_sleeping(const std::function<bool()>& done);
+
 /// One episode of an Env: a worker thread running runner::run_episode and the decision channel.
 class EnvEpisode {
  public:
@@ -54,6 +77,11 @@ class EnvEpisode {
   /// Waits until the episode asks for the next decision or ends; rethrows what stopped it.
   void wait();
 
+  /// True when the episode waits for actions or has ended: wait() then returns at once.
+  bool ready() const { return state_.load() != State::Running; }
+  /// Posts to `signal` from now on at each decision and at the end (VecEnv's asynchronous stepping); call while
+  /// no episode runs.
+  void signal_to(std::shared_ptr<ReadySignal> signal) { signal_ = std::move(signal); }
   /// True when the episode has ended.
   bool finished() const { return state_ == State::Finished; }
   /// The current decision (the last one once the episode ended).
@@ -103,6 +131,7 @@ class EnvEpisode {
   std::exception_ptr error_;
   policies::PolicyContext context_;
   Rng policy_rng_;
+  std::shared_ptr<ReadySignal> signal_;  // posted to at each decision and at the end, if set
 };
 
 }  // namespace freeplay::python

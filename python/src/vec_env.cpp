@@ -7,11 +7,13 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <exception>
 #include <initializer_list>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -375,8 +377,16 @@ class VecStepper {
   /// built-in reward computed here (None: rewards stay 0 for the caller to fill); `dt` is a step's simulated seconds.
   VecStepper(py::list episodes, std::vector<std::string> items, std::vector<std::string> seats, bool children,
              bool privileged, const std::optional<std::string>& reward, double dt)
-      : owners_(std::move(episodes)), dt_(dt), zones_(owners_.size()), ids_(owners_.size()) {
-    for (const auto& e : owners_) episodes_.push_back(e.cast<EnvEpisode*>());
+      : owners_(std::move(episodes)),
+        dt_(dt),
+        zones_(owners_.size()),
+        ids_(owners_.size()),
+        slots_(owners_.size(), Slot::Held),
+        signal_(std::make_shared<ReadySignal>()) {
+    for (const auto& e : owners_) {
+      episodes_.push_back(e.cast<EnvEpisode*>());
+      episodes_.back()->signal_to(signal_);
+    }
     layout_.items = std::move(items);
     layout_.seats = std::move(seats);
     layout_.children = children;
@@ -391,6 +401,12 @@ class VecStepper {
   /// (observations, rewards, terminated, truncated, infos, indices of the environments whose episode ended).
   py::tuple step(const py::sequence& actions) {
     const auto n = episodes_.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      if (slots_[i] != Slot::Held) {
+        throw py::value_error(fmt::format("VecEnv.step() while environment {} is sent or reset asynchronously: recv() "
+                                          "it first, or reset()", i));
+      }
+    }
     if (static_cast<std::size_t>(py::len(actions)) != n) {
       throw InputError(fmt::format("{} action lists for {} environments", py::len(actions), n), "actions",
                        "one action list per environment");
@@ -415,7 +431,7 @@ class VecStepper {
     }
     py::list finished;
     for (std::size_t i = 0; i < n; ++i) {
-      fill_objects(b, i);
+      fill_objects(b, i, i);
       if (episodes_[i]->finished()) finished.append(i);
     }
     return py::make_tuple(b.obs, b.rewards, b.terminated, b.truncated, b.infos, finished);
@@ -426,9 +442,96 @@ class VecStepper {
     Batch b(layout_, static_cast<py::ssize_t>(episodes_.size()), true);
     for (std::size_t i = 0; i < episodes_.size(); ++i) {
       fill_row(b, i, episodes_[i]->decision(), ids_[i], layout_);
-      fill_objects(b, i);
+      fill_objects(b, i, i);
     }
     return py::make_tuple(b.obs, b.infos);
+  }
+
+  /// Marks every environment as just reset: `asynchronous`, each waits to be received (async_reset), else each
+  /// waits for its actions (reset).
+  void begin(bool asynchronous) { slots_.assign(episodes_.size(), asynchronous ? Slot::Reset : Slot::Held); }
+
+  /// Hands environment env_ids[j] the actions `actions[j]` and returns at once; each must have been received since
+  /// its last send (or reset with reset()).
+  void send(const py::sequence& actions, const std::vector<py::ssize_t>& env_ids) {
+    if (static_cast<std::size_t>(py::len(actions)) != env_ids.size()) {
+      throw InputError(fmt::format("{} action lists for {} environment ids", py::len(actions), env_ids.size()),
+                       "actions", "one action list per environment id");
+    }
+    std::vector<bool> seen(episodes_.size(), false);
+    for (const auto id : env_ids) {
+      if (id < 0 || static_cast<std::size_t>(id) >= episodes_.size()) {
+        throw py::index_error(fmt::format("no environment {}: the ids are 0 to {}", id, episodes_.size() - 1));
+      }
+      const auto i = static_cast<std::size_t>(id);
+      if (seen[i]) throw py::value_error(fmt::format("environment {} is sent twice", id));
+      seen[i] = true;
+      if (slots_[i] != Slot::Held) {
+        throw py::value_error(fmt::format("environment {} has not been received since its last {}: recv() it first",
+                                          id, slots_[i] == Slot::Reset ? "reset" : "send"));
+      }
+    }
+    std::vector<std::vector<Action>> parsed;
+    parsed.reserve(env_ids.size());
+    for (const auto a : actions) parsed.push_back(actions_from_python(a, "freeplay.VecEnv"));
+    for (std::size_t j = 0; j < env_ids.size(); ++j) {
+      const auto i = static_cast<std::size_t>(env_ids[j]);
+      episodes_[i]->hand(std::move(parsed[j]));
+      slots_[i] = Slot::Sent;
+    }
+  }
+
+  /// Waits (GIL released) until `batch` of the environments sent or reset asynchronously are ready and returns
+  /// them in the batched layout, rows in the order they are taken: (observations, rewards, terminated, truncated,
+  /// infos with "env_id", rows whose episode ended, rows that hold a reset's first decision).
+  py::tuple recv(std::size_t batch) {
+    const auto pending = static_cast<std::size_t>(
+        std::count_if(slots_.begin(), slots_.end(), [](Slot s) { return s != Slot::Held; }));
+    if (batch < 1 || batch > pending) {
+      throw py::value_error(fmt::format("recv() of {} environments while {} are sent or reset: send() first", batch,
+                                        pending));
+    }
+    Batch b(layout_, static_cast<py::ssize_t>(batch), true);
+    py::array_t<std::int64_t> env_ids(static_cast<py::ssize_t>(batch));
+    auto* ids = env_ids.mutable_data();
+    auto* rewards = b.rewards.mutable_data();
+    auto* terminated = b.terminated.mutable_data();
+    auto* truncated = b.truncated.mutable_data();
+    std::vector<std::size_t> taken;
+    {
+      py::gil_scoped_release release;
+      taken = take_ready(batch);
+      std::exception_ptr error;
+      for (std::size_t row = 0; row < batch; ++row) {
+        const auto i = taken[row];
+        EnvEpisode& e = *episodes_[i];
+        try {
+          e.wait();  // returns at once (ready); rethrows what stopped the episode
+        } catch (...) {
+          if (!error) error = std::current_exception();
+        }
+        ids[row] = static_cast<std::int64_t>(i);
+        fill_row(b, row, e.decision(), ids_[i], layout_);
+        rewards[row] = reward_ && slots_[i] == Slot::Sent ? reward_of(e.decision()) : 0.0;
+        terminated[row] = e.finished() && !e.hit_cap();
+        truncated[row] = e.finished() && e.hit_cap();
+      }
+      if (error) {
+        for (const auto i : taken) slots_[i] = Slot::Held;
+        std::rethrow_exception(error);
+      }
+    }
+    py::list finished;
+    py::list reset;
+    for (std::size_t row = 0; row < batch; ++row) {
+      const auto i = taken[row];
+      fill_objects(b, row, i);
+      if (episodes_[i]->finished()) finished.append(row);
+      if (slots_[i] == Slot::Reset) reset.append(row);
+      slots_[i] = Slot::Held;
+    }
+    b.infos["env_id"] = env_ids;
+    return py::make_tuple(b.obs, b.rewards, b.terminated, b.truncated, b.infos, finished, reset);
   }
 
   /// Notes that environment i now plays episode `index` of root seed `seed` (infos["episode"], infos["seed"]).
@@ -437,12 +540,13 @@ class VecStepper {
     ids_[i] = {index, seed};
   }
 
-  /// Rewrites row `i` of a step's `obs` and `infos` with environment i's current decision (after its reset).
-  void write_row(std::size_t i, py::dict obs, py::dict infos) {
-    if (i >= episodes_.size()) throw py::index_error("no such environment");
-    Batch b(layout_, static_cast<py::ssize_t>(episodes_.size()), false, obs, infos);
-    fill_row(b, i, episodes_[i]->decision(), ids_[i], layout_);
-    fill_objects(b, i);
+  /// Rewrites row `row` of a step's (or a recv's) `obs` and `infos` with environment `env`'s current decision (after
+  /// its reset).
+  void write_row(std::size_t row, std::size_t env, py::dict obs, py::dict infos) {
+    if (env >= episodes_.size()) throw py::index_error("no such environment");
+    Batch b(layout_, 0, false, obs, infos);
+    fill_row(b, row, episodes_[env]->decision(), ids_[env], layout_);
+    fill_objects(b, row, env);
   }
 
  private:
@@ -456,10 +560,48 @@ class VecStepper {
     });
   }
 
-  /// Environment i's Python-object entries: its zones, interaction events, events and action results.
-  void fill_objects(Batch& b, std::size_t i) {
-    const Decision& d = episodes_[i]->decision();
-    auto& cache = zones_[i];
+  /// Where an environment stands in asynchronous stepping (send/recv).
+  enum class Slot {
+    Held,   ///< received (or reset synchronously): waits for its actions from send() or step()
+    Sent,   ///< handed its actions: stepping, or ready to be received
+    Reset,  ///< reset by async_reset: its first decision is ready to be received
+  };
+
+  /// Waits until `batch` environments that are sent or reset are ready (the caller checked that as many are) and
+  /// returns their indices; the scan starts after the environment taken last, so that none waits for ever.
+  std::vector<std::size_t> take_ready(std::size_t batch) {
+    const auto n = episodes_.size();
+    std::vector<std::size_t> taken;
+    std::vector<bool> chosen(n, false);
+    const auto scan = [&] {
+      for (std::size_t k = 0; k < n && taken.size() < batch; ++k) {
+        const auto i = (next_ + k) % n;
+        if (!chosen[i] && slots_[i] != Slot::Held && episodes_[i]->ready()) {
+          chosen[i] = true;
+          taken.push_back(i);
+        }
+      }
+      return taken.size() == batch;
+    };
+    while (true) {
+      std::uint64_t seen = 0;
+      {
+        std::lock_guard lock(signal_->mutex);
+        seen = signal_->posts;
+      }
+      if (scan() || poll_before_sleeping(scan)) break;
+      std::unique_lock lock(signal_->mutex);
+      signal_->cv.wait(lock, [&] { return signal_->posts != seen; });
+    }
+    next_ = (taken.back() + 1) % n;
+    return taken;
+  }
+
+  /// Environment `env`'s Python-object entries, put in row `i`: its zones, interaction events, events and action
+  /// results.
+  void fill_objects(Batch& b, std::size_t i, std::size_t env) {
+    const Decision& d = episodes_[env]->decision();
+    auto& cache = zones_[env];
     if (!cache.python || cache.version != d.zones_version) {
       const auto& current = d.observation.zones;
       py::tuple zones(current.size());
@@ -509,6 +651,9 @@ class VecStepper {
   double dt_ = 0.1;
   std::vector<ZoneCache> zones_;
   std::vector<EpisodeId> ids_;
+  std::vector<Slot> slots_;              // per environment, its place in asynchronous stepping
+  std::size_t next_ = 0;                 // where recv's next scan for ready environments starts
+  std::shared_ptr<ReadySignal> signal_;  // posted to by every episode when it is ready
   py::tuple empty_;
 };
 
@@ -523,7 +668,10 @@ void bind_vec_env(py::module_& m) {
       .def("step", &VecStepper::step, py::arg("actions"))
       .def("gather", &VecStepper::gather)
       .def("set_episode", &VecStepper::set_episode, py::arg("i"), py::arg("index"), py::arg("seed"))
-      .def("write_row", &VecStepper::write_row, py::arg("i"), py::arg("obs"), py::arg("infos"));
+      .def("write_row", &VecStepper::write_row, py::arg("row"), py::arg("env"), py::arg("obs"), py::arg("infos"))
+      .def("begin", &VecStepper::begin, py::arg("asynchronous"))
+      .def("send", &VecStepper::send, py::arg("actions"), py::arg("env_ids"))
+      .def("recv", &VecStepper::recv, py::arg("batch"));
   m.def("_builtin_reward", [](const std::string& name, double dt, const std::vector<std::string>& social) {
     return builtin_reward(builtin_reward_named(name), dt, [&](auto&& add) {
       for (const auto& label : social) add(std::string_view(label));

@@ -1,5 +1,7 @@
 """freeplay.Env and VecEnv: determinism, equality with a run of the same policy, rewards, bad actions."""
 
+import random
+
 import numpy
 import pytest
 
@@ -316,3 +318,160 @@ def test_hidden_child_state_on_explicit_request(scenario):
     assert set(hidden) == HIDDEN and hidden["motivation"].shape == (1, 1)
     assert 0.0 <= hidden["motivation"][0, 0] <= 1.0 and hidden["labels"].shape == (1, 1, 3)
     assert "privileged" not in freeplay.VecEnv(1, scenario, SHORT).reset(seed=3)[1]
+
+
+def play_async(vec, seed, episodes_per_env, pick):
+    """Plays `vec` asynchronously with one Mover per environment until each environment has finished
+    `episodes_per_env` episodes; `pick(held, in_flight)` picks which of the received environments are sent back
+    now (the others wait for later rounds; at least one when none is in flight). Returns per environment the list of its episodes, each a list of per-step entries
+    (row expectation, reward, terminated, truncated, events, episode index) and the episode's final info."""
+    items = list(vec.item_names)
+    vec.async_reset(seed=seed)
+    policies = [None] * vec.num_envs
+    played = [[] for _ in range(vec.num_envs)]
+    held = []  # environments received and not yet sent: (env id, its actions)
+    while True:
+        observations, rewards, terminated, truncated, infos = vec.recv()
+        assert len(infos["env_id"]) == vec.batch_size == rewards.shape[0] == observations["t"].shape[0]
+        for row, k in enumerate(infos["env_id"]):
+            k = int(k)
+            if infos.get("_final_info") is not None and infos["_final_info"][row]:
+                final = infos["final_info"][row]
+                played[k][-1]["steps"].append((expected_row_of(infos["final_observation"][row], items), rewards[row],
+                                               terminated[row], truncated[row], final["events"]))
+                played[k][-1]["info"] = final
+            elif played[k]:
+                played[k][-1]["steps"].append((expected_row_of(observations, items, row), rewards[row],
+                                               terminated[row], truncated[row], infos["events"][row] or []))
+            if infos.get("_context") is not None and infos["_context"][row]:  # a new episode starts in this row
+                assert rewards[row] == 0.0 or played[k]
+                policy = Mover()
+                policy.reset(infos["context"][row], infos["rng"][row])
+                policies[k] = policy
+                played[k].append({"episode": int(infos["episode"][row]), "info": None,
+                                  "steps": [(expected_row_of(observations, items, row), None, False, False,
+                                             infos["events"][row] or [])]})
+            held.append((k, policies[k].decide(vec.observation(k))))
+        if all(len(p) > episodes_per_env for p in played):
+            return played
+        sending = pick(held, vec.num_envs - len(held))
+        held = [entry for entry in held if entry not in sending]
+        vec.send([actions for _, actions in sending], [k for k, _ in sending])
+
+
+def expected_row_of(observations, items, row=None):
+    """The fields of a batched row that `expected_row` gives for a typed observation (to compare the two)."""
+    get = (lambda key: observations[key]) if row is None else (lambda key: observations[key][row])
+    flags = numpy.stack([get(key) for key in ("item_touched_by_child", "item_held_by_robot", "item_visible")], axis=1)
+    return {"t": float(get("t")), "pose": numpy.array(get("item_pose")), "flags": flags,
+            "touches": numpy.array(get("touch_position")), "current": int(get("self_current_item")),
+            "reach": numpy.array(get("self_arm_reach_centre")), "interaction_events": tuple(get("interaction_events")),
+            "zones": [(z.colour, z.centroid.tolist()) for z in get("zones")]}
+
+
+def same_row(batched, typed):
+    """True when a batched row's fields equal those `expected_row` gave for Env's typed observation."""
+    return (batched["t"] == typed["t"] and numpy.array_equal(batched["pose"], typed["pose"], equal_nan=True)
+            and numpy.array_equal(batched["flags"], typed["flags"])
+            and numpy.array_equal(batched["touches"], typed["touches"], equal_nan=True)
+            and batched["current"] == typed["current"] and numpy.array_equal(batched["reach"], typed["reach"])
+            and batched["interaction_events"] == typed["interaction_events"] and batched["zones"] == typed["zones"])
+
+
+@pytest.mark.parametrize("shuffle", [None, 1, 2])
+def test_async_env_k_plays_env_episodes_whatever_order_they_come_back(scenario, shuffle):
+    """With send/recv (batch_size 1) environment k plays Env's episodes k, k + n, … of the seed: the same
+    observations row by row, rewards, ends, events and records, whichever order the environments are received and
+    sent back in (all at once, or a random part of those received each round while the others wait)."""
+    reward = freeplay.rewards.coded_joint_play
+    n = 2 if shuffle is None else 3
+    vec = freeplay.VecEnv(n, scenario, SHORT, reward=reward, batch_size=1)
+    rng = random.Random(shuffle)
+
+    def pick(held, in_flight):
+        return held if shuffle is None else rng.sample(held, rng.randint(0 if in_flight else 1, len(held)))
+
+    played = play_async(vec, 6, 1, pick)
+    for k in range(n):
+        for m, episode in enumerate(played[k][:2]):
+            assert episode["episode"] == k + m * n
+            if m == 1:
+                continue  # the second episode is still running: its start is compared below
+            expected, final = single_rollout(scenario, 6, k + m * n, reward)
+            assert len(episode["steps"]) == len(expected)
+            for step, ((got, value, term, trunc, events), (row, want, want_term, want_trunc, want_events)) in \
+                    enumerate(zip(episode["steps"], expected)):
+                assert same_row(got, row), (k, step)
+                assert (term, trunc, events) == (want_term, want_trunc, want_events), (k, step)
+                if want is not None:
+                    assert value == want, (k, step)
+            wall = {"wall_s"}
+            assert without(episode["info"]["record"], wall) == without(final["record"], wall)
+        obs, info = freeplay.Env(scenario, SHORT).reset(seed=6, options={"episode": k + n})
+        assert same_row(played[k][1]["steps"][0][0], expected_row(obs, info, list(vec.item_names)))
+    vec.close()
+
+
+def test_async_batches_and_python_rewards(scenario):
+    """recv returns batch_size rows with their env ids; a Python reward is called for stepped rows only and equals
+    the built-in one; the first recv after async_reset holds every environment's first decision."""
+    def joint(step):
+        social = [labels.get("social_engagement") for labels in step.coded.values()]
+        return step.dt if any(label in freeplay.rewards.JOINT_PLAY for label in social) else 0.0
+
+    python = freeplay.VecEnv(3, scenario, SHORT, reward=joint, batch_size=3)
+    native = freeplay.VecEnv(3, scenario, SHORT, reward=freeplay.rewards.coded_joint_play, batch_size=3)
+    python.async_reset(seed=8)
+    native.async_reset(seed=8)
+    a, b = python.recv(), native.recv()
+    assert sorted(a[4]["env_id"].tolist()) == [0, 1, 2] and a[4]["_context"].all()
+    assert a[1].tolist() == [0.0, 0.0, 0.0]
+    for _ in range(300):
+        for vec, got in ((python, a), (native, b)):
+            vec.send([[] for _ in got[4]["env_id"]], got[4]["env_id"])
+        a, b = python.recv(), native.recv()
+        order_a, order_b = numpy.argsort(a[4]["env_id"]), numpy.argsort(b[4]["env_id"])
+        numpy.testing.assert_array_equal(a[1][order_a], b[1][order_b])
+        numpy.testing.assert_array_equal(a[0]["t"][order_a], b[0]["t"][order_b])
+    small = freeplay.VecEnv(3, scenario, SHORT, batch_size=2)
+    small.async_reset(seed=1)
+    observations, rewards, terminated, truncated, infos = small.recv()
+    assert infos["env_id"].shape == rewards.shape == terminated.shape == (2,)
+    assert observations["item_pose"].shape[0] == 2 and len(observations["zones"]) == 2
+    assert infos["episode"].tolist() == infos["env_id"].tolist()
+
+
+def test_async_bad_input_raises(scenario):
+    vec = freeplay.VecEnv(2, scenario, SHORT, batch_size=1)
+    with pytest.raises(ValueError, match="batch_size"):
+        freeplay.VecEnv(2, scenario, SHORT, batch_size=3)
+    with pytest.raises(RuntimeError, match="async_reset"):
+        vec.recv()
+    with pytest.raises(RuntimeError, match="async_reset"):
+        vec.send([[]], [0])
+    vec.async_reset(seed=1)
+    with pytest.raises(ValueError, match="not been received"):
+        vec.send([[]], [0])  # reset, not yet received
+    with pytest.raises(ValueError, match="recv"):
+        vec.step([[], []])  # the synchronous step needs every environment received
+    k = int(vec.recv()[4]["env_id"][0])
+    with pytest.raises(IndexError, match="no environment 5"):
+        vec.send([[]], [5])
+    with pytest.raises(IndexError, match="no environment -1"):
+        vec.send([[]], [-1])
+    with pytest.raises(freeplay.InputError):
+        vec.send([[], []], [k])  # two action lists for one id
+    with pytest.raises(ValueError, match="twice"):
+        vec.send([[], []], [k, k])
+    with pytest.raises(freeplay.InputError):
+        vec.send([["dance"]], [k])
+    vec.send([[]], [k])
+    with pytest.raises(ValueError, match="not been received since its last send"):
+        vec.send([[]], [k])
+    vec.recv()
+    vec.recv()
+    with pytest.raises(ValueError, match="send"):
+        vec.recv()  # nothing sent
+    vec.reset(seed=1)  # back to synchronous stepping
+    vec.step([[], []])
+    vec.close()
