@@ -9,6 +9,9 @@
    workers on the same episodes (what this machine allows at the moment: a VecEnv cannot scale better), with the
    default reward (built-in: computed in C++ inside the batched step) and with a Python callable (called per
    environment and step);
+4. (--async, alone) VecEnv stepped asynchronously: 2 environments, batch_size 1 (send/recv, a trivial policy that
+   sends no action), and 1 environment so, beside the synchronous VecEnv of 1 and 2 environments and the engine's
+   1 -> 2 workers, all alternating in 3 rounds (best of each);
 Wall-clock numbers: run on a quiet machine and report them with the machine.
 """
 
@@ -81,6 +84,21 @@ def vec_rate(scenario, overrides, n, steps, reward=None):
     return n * steps / (time.perf_counter() - start)
 
 
+def async_rate(scenario, overrides, n, batch_size, steps):
+    """Decisions per wall second of a VecEnv of n environments stepped with send/recv (batch_size each), doing
+    nothing: each recv's environments are sent their (empty) actions at once."""
+    vec = freeplay.VecEnv(n, scenario, overrides, batch_size=batch_size)
+    vec.async_reset(seed=1)
+    env_ids = vec.recv()[4]["env_id"]
+    done = 0
+    start = time.perf_counter()
+    while done < steps:
+        vec.send([[] for _ in env_ids], env_ids)
+        env_ids = vec.recv()[4]["env_id"]
+        done += len(env_ids)
+    return done / (time.perf_counter() - start)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--episodes", type=int, default=6)
@@ -90,10 +108,40 @@ def main():
     parser.add_argument("--python-reward", action="store_true",
                         help="also time VecEnv with a reward written in Python")
     parser.add_argument("--vec-only", action="store_true", help="only the C++ engine's 1 -> 2 workers and VecEnv")
+    parser.add_argument("--async", dest="asynchronous", action="store_true",
+                        help="only the C++ engine's 1 -> 2 workers, the 1-environment VecEnv and 2 environments "
+                             "stepped with send/recv (batch_size 1), alternating")
     args = parser.parse_args()
     short = ["protocol.greeting_s=0", "protocol.tutorial_s=1", "protocol.debriefing_s=0"]
 
     timed_run(args.scenario, short + ["robot.policy=idle"], 1, repetitions=1)  # loads the shared models once
+    if args.asynchronous:
+        measure = {
+            "engine 1 worker": lambda: timed_run(args.scenario, short + ["robot.policy=idle"], args.episodes,
+                                                 repetitions=1)[0],
+            "engine 2 workers": lambda: timed_run(args.scenario, short + ["robot.policy=idle"], args.episodes,
+                                                  jobs=2, repetitions=1)[0],
+            "VecEnv 1 env": lambda: vec_rate(args.scenario, short, 1, args.vec_steps),
+            "VecEnv 2 envs": lambda: vec_rate(args.scenario, short, 2, args.vec_steps),
+            "async 1 env, batch 1": lambda: async_rate(args.scenario, short, 1, 1, args.vec_steps),
+            "async 2 envs, batch 1": lambda: async_rate(args.scenario, short, 2, 1, 2 * args.vec_steps),
+        }
+        seen = {name: [] for name in measure}
+        for _ in range(3):  # alternating: every measurement of a round sees about the same load
+            for name, run in measure.items():
+                seen[name].append(run())
+        best = {name: (min if name.startswith("engine") else max)(values) for name, values in seen.items()}
+        print(f"C++ idle run, 2 workers: {best['engine 1 worker'] / best['engine 2 workers']:.2f}x the speed of "
+              f"1 worker (this machine's ceiling now)")
+        one = best["VecEnv 1 env"]
+        print(f"VecEnv: 1 env {one:,.0f} steps/s, 2 envs (step) {best['VecEnv 2 envs']:,.0f} steps/s "
+              f"({best['VecEnv 2 envs'] / one:.2f}x), 2 envs (send/recv, batch 1) "
+              f"{best['async 2 envs, batch 1']:,.0f} steps/s ({best['async 2 envs, batch 1'] / one:.2f}x); "
+              f"1 env (send/recv) {best['async 1 env, batch 1']:,.0f} steps/s")
+        for name, values in seen.items():
+            print(f"  {name}: " + ", ".join(f"{v:,.3f} s" if name.startswith("engine") else f"{v:,.0f} steps/s"
+                                            for v in values))
+        return
     if not args.vec_only:
         cpp_wall, cpp_sim = timed_run(args.scenario, short + ["robot.policy=idle"], args.episodes)
         py_wall, py_sim = timed_run(args.scenario, short + ["robot.policy=python:bench_python:Trivial"],
