@@ -240,6 +240,94 @@ struct Batch {
   }
 };
 
+/// Batches whose arrays are used again once Python holds none of them: making a batch's 30 or so arrays costs about
+/// as much as a decision of this scenario, and with send/recv it is paid per environment (docs/python.md, Speed).
+/// A batch handed out is a fresh pair of dicts over the arrays; it is reused only when every one of its arrays is
+/// back to the references the pool itself holds (no dict, view, or variable of the caller's keeps one).
+class BatchPool {
+ public:
+  /// A batch of `n` rows to fill: a free one of the pool, or a new one (kept in the pool while it has room).
+  Batch& take(const BatchLayout& layout, py::ssize_t n) {
+    for (auto& entry : entries_) {
+      if (entry.rows == n && entry.free()) return entry.hand_out();
+    }
+    if (entries_.size() >= kMaxBatches) {
+      spare_ = std::make_unique<Batch>(layout, n, true);  // handed out as made: not reused
+      return *spare_;
+    }
+    entries_.push_back(Entry(std::make_unique<Batch>(layout, n, true), n));
+    return entries_.back().hand_out();
+  }
+
+ private:
+  /// Batches kept for reuse (a caller that keeps the previous observations while it steps holds one or two).
+  static constexpr std::size_t kMaxBatches = 4;
+
+  /// One pooled batch: its own dicts stay here as templates, and the arrays' reference counts when nobody else
+  /// holds them (the templates, the Batch's members and `arrays`).
+  struct Entry {
+    std::unique_ptr<Batch> batch;
+    py::ssize_t rows = 0;
+    py::dict obs;     ///< the batch's observation dict as made (never handed out)
+    py::dict infos;   ///< the batch's info dict as made (never handed out)
+    py::object hidden;  ///< infos["privileged"] as made, or None
+    std::vector<std::pair<py::object, py::ssize_t>> arrays;  ///< every array and its reference count at rest
+
+    Entry(std::unique_ptr<Batch> made, py::ssize_t n) : batch(std::move(made)), rows(n) {
+      obs = batch->obs;
+      infos = batch->infos;
+      hidden = infos.contains("privileged") ? py::object(infos["privileged"]) : py::object(py::none());
+      for (const char* key : {"zones", "interaction_events"}) PyDict_DelItemString(obs.ptr(), key);
+      watch(obs);
+      watch(infos);
+      if (!hidden.is_none()) watch(hidden);
+      for (const py::handle array : {py::handle(batch->rewards), py::handle(batch->terminated), py::handle(batch->truncated)}) {
+        arrays.emplace_back(py::reinterpret_borrow<py::object>(array), 0);
+      }
+      for (auto& [array, at_rest] : arrays) at_rest = array.ref_count();
+    }
+    /// A shallow copy of dict `d`.
+    static py::dict copy(const py::handle& d) {
+      PyObject* copied = PyDict_Copy(d.ptr());
+      if (copied == nullptr) throw py::error_already_set();
+      return py::reinterpret_steal<py::dict>(copied);
+    }
+    /// Notes every array of dict `d`.
+    void watch(const py::dict& d) {
+      for (const auto& item : d) {
+        if (py::isinstance<py::array>(item.second)) {
+          arrays.emplace_back(py::reinterpret_borrow<py::object>(item.second), 0);
+        }
+      }
+    }
+    /// True when no one but the pool holds any of the batch's arrays; drops the batch's hold on the dicts it last
+    /// handed out once no one else holds them.
+    bool free() {
+      if (batch->obs.ptr() != obs.ptr()) {  // handed out before
+        if (batch->obs.ref_count() != 1 || batch->infos.ref_count() != 1) return false;
+        batch->obs = py::dict();
+        batch->infos = py::dict();
+      }
+      for (const auto& [array, at_rest] : arrays) {
+        if (array.ref_count() != at_rest) return false;
+      }
+      return true;
+    }
+    /// The batch with fresh dicts over its arrays (and fresh tuples for the per-row Python objects).
+    Batch& hand_out() {
+      batch->obs = copy(obs);
+      batch->infos = copy(infos);
+      if (!hidden.is_none()) batch->infos["privileged"] = copy(hidden);
+      batch->obs["zones"] = py::tuple(rows);
+      batch->obs["interaction_events"] = py::tuple(rows);
+      return *batch;
+    }
+  };
+
+  std::vector<Entry> entries_;
+  std::unique_ptr<Batch> spare_;  // the last batch made while the pool was full
+};
+
 /// The label index of `label` on axis `a`, or -1 ("" before coding, or not a label of that axis).
 std::int8_t label_index(std::size_t a, std::string_view label) {
   const auto parsed = agents::parse_label(label);
@@ -414,7 +502,7 @@ class VecStepper {
     std::vector<std::vector<Action>> parsed;
     parsed.reserve(n);
     for (const auto a : actions) parsed.push_back(actions_from_python(a, "freeplay.VecEnv"));
-    Batch b(layout_, static_cast<py::ssize_t>(n), true);
+    Batch& b = batches_.take(layout_, static_cast<py::ssize_t>(n));
     auto* rewards = b.rewards.mutable_data();
     auto* terminated = b.terminated.mutable_data();
     auto* truncated = b.truncated.mutable_data();
@@ -439,7 +527,7 @@ class VecStepper {
 
   /// The current decisions (after a reset) in the batched layout: (observations, infos).
   py::tuple gather() {
-    Batch b(layout_, static_cast<py::ssize_t>(episodes_.size()), true);
+    Batch& b = batches_.take(layout_, static_cast<py::ssize_t>(episodes_.size()));
     for (std::size_t i = 0; i < episodes_.size(); ++i) {
       fill_row(b, i, episodes_[i]->decision(), ids_[i], layout_);
       fill_objects(b, i, i);
@@ -491,7 +579,7 @@ class VecStepper {
       throw py::value_error(fmt::format("recv() of {} environments while {} are sent or reset: send() first", batch,
                                         pending));
     }
-    Batch b(layout_, static_cast<py::ssize_t>(batch), true);
+    Batch& b = batches_.take(layout_, static_cast<py::ssize_t>(batch));
     py::array_t<std::int64_t> env_ids(static_cast<py::ssize_t>(batch));
     auto* ids = env_ids.mutable_data();
     auto* rewards = b.rewards.mutable_data();
@@ -655,6 +743,7 @@ class VecStepper {
   std::size_t next_ = 0;                 // where recv's next scan for ready environments starts
   std::shared_ptr<ReadySignal> signal_;  // posted to by every episode when it is ready
   py::tuple empty_;
+  BatchPool batches_;  // the arrays of batches handed out, reused once Python dropped them
 };
 
 }  // namespace

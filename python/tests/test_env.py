@@ -475,3 +475,36 @@ def test_async_bad_input_raises(scenario):
     vec.reset(seed=1)  # back to synchronous stepping
     vec.step([[], []])
     vec.close()
+
+
+def test_arrays_handed_out_are_never_overwritten(scenario):
+    """VecEnv reuses the arrays of batches that Python dropped; anything still held (a dict, one array, a view of
+    a row, the rewards) keeps its values while later steps and recvs run."""
+    vec = freeplay.VecEnv(2, scenario, SHORT, batch_size=1)
+    vec.reset(seed=3)
+    kept = []
+    for step in range(40):
+        observations, rewards, terminated, truncated, infos = vec.step([[], []])
+        if step % 7 == 0:
+            kept.append(({key: value.copy() for key, value in observations.items() if isinstance(value, numpy.ndarray)},
+                         observations, rewards.copy(), rewards, observations["item_pose"][1],
+                         observations["item_pose"][1].copy()))
+        elif step % 7 == 3:
+            single = (observations["t"], observations["t"].copy())
+    vec.async_reset(seed=3)
+    ids = vec.recv()[4]["env_id"]
+    for step in range(40):
+        vec.send([[]], ids)
+        observations, rewards, _, _, infos = vec.recv()
+        ids = infos["env_id"]
+        if step % 9 == 0:
+            kept.append(({key: value.copy() for key, value in observations.items() if isinstance(value, numpy.ndarray)},
+                         observations, rewards.copy(), rewards, observations["item_pose"][0],
+                         observations["item_pose"][0].copy()))
+    for copies, held, reward_copy, reward, view, view_copy in kept:
+        for key, value in copies.items():
+            numpy.testing.assert_array_equal(held[key], value)
+        numpy.testing.assert_array_equal(reward, reward_copy)
+        numpy.testing.assert_array_equal(view, view_copy)
+    numpy.testing.assert_array_equal(single[0], single[1])
+    vec.close()
