@@ -342,7 +342,11 @@ class VecEnv:
         received by :meth:`recv` since its last send (or since :meth:`async_reset`)."""
         if self._async_next is None:
             raise RuntimeError("VecEnv.send() before async_reset()")
-        self._stepper.send(actions, [int(k) for k in numpy.atleast_1d(env_ids)])
+        if isinstance(env_ids, numpy.ndarray):
+            env_ids = env_ids.tolist()  # recv's infos["env_id"], as Python ints
+        elif isinstance(env_ids, (int, numpy.integer)):
+            env_ids = [int(env_ids)]
+        self._stepper.send(actions, env_ids)
 
     def recv(self):
         """Waits until ``batch_size`` environments that were sent actions (or reset by :meth:`async_reset`) are
