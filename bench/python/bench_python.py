@@ -74,26 +74,36 @@ def python_reward(step):
     return step.dt
 
 
-def vec_rate(scenario, overrides, n, steps, reward=None):
-    """Decisions per wall second of a VecEnv of n environments doing nothing."""
+def think(seconds):
+    """A policy's own work on one decision: `seconds` of busy Python (0: none)."""
+    if seconds:
+        until = time.perf_counter() + seconds
+        while time.perf_counter() < until:
+            pass
+    return []
+
+
+def vec_rate(scenario, overrides, n, steps, reward=None, policy_s=0.0):
+    """Decisions per wall second of a VecEnv of n environments doing nothing (after `policy_s` of thinking per
+    environment and decision)."""
     vec = freeplay.VecEnv(n, scenario, overrides, reward=reward)
     vec.reset(seed=1)
     start = time.perf_counter()
     for _ in range(steps):
-        vec.step([[] for _ in range(n)])
+        vec.step([think(policy_s) for _ in range(n)])
     return n * steps / (time.perf_counter() - start)
 
 
-def async_rate(scenario, overrides, n, batch_size, steps):
+def async_rate(scenario, overrides, n, batch_size, steps, policy_s=0.0):
     """Decisions per wall second of a VecEnv of n environments stepped with send/recv (batch_size each), doing
-    nothing: each recv's environments are sent their (empty) actions at once."""
+    nothing: each recv's environments are sent their (empty) actions at once (after `policy_s` of thinking each)."""
     vec = freeplay.VecEnv(n, scenario, overrides, batch_size=batch_size)
     vec.async_reset(seed=1)
     env_ids = vec.recv()[4]["env_id"]
     done = 0
     start = time.perf_counter()
     while done < steps:
-        vec.send([[] for _ in env_ids], env_ids)
+        vec.send([think(policy_s) for _ in env_ids], env_ids)
         env_ids = vec.recv()[4]["env_id"]
         done += len(env_ids)
     return done / (time.perf_counter() - start)
@@ -111,20 +121,25 @@ def main():
     parser.add_argument("--async", dest="asynchronous", action="store_true",
                         help="only the C++ engine's 1 -> 2 workers, the 1-environment VecEnv and 2 environments "
                              "stepped with send/recv (batch_size 1), alternating")
+    parser.add_argument("--policy-us", type=float, default=0.0,
+                        help="with --async: microseconds of busy Python per decision (a policy's own work), which "
+                             "send/recv can overlap with the other environments' simulation and step cannot")
     args = parser.parse_args()
     short = ["protocol.greeting_s=0", "protocol.tutorial_s=1", "protocol.debriefing_s=0"]
 
     timed_run(args.scenario, short + ["robot.policy=idle"], 1, repetitions=1)  # loads the shared models once
     if args.asynchronous:
+        policy_s = args.policy_us * 1e-6
         measure = {
             "engine 1 worker": lambda: timed_run(args.scenario, short + ["robot.policy=idle"], args.episodes,
                                                  repetitions=1)[0],
             "engine 2 workers": lambda: timed_run(args.scenario, short + ["robot.policy=idle"], args.episodes,
                                                   jobs=2, repetitions=1)[0],
-            "VecEnv 1 env": lambda: vec_rate(args.scenario, short, 1, args.vec_steps),
-            "VecEnv 2 envs": lambda: vec_rate(args.scenario, short, 2, args.vec_steps),
-            "async 1 env, batch 1": lambda: async_rate(args.scenario, short, 1, 1, args.vec_steps),
-            "async 2 envs, batch 1": lambda: async_rate(args.scenario, short, 2, 1, 2 * args.vec_steps),
+            "VecEnv 1 env": lambda: vec_rate(args.scenario, short, 1, args.vec_steps, policy_s=policy_s),
+            "VecEnv 2 envs": lambda: vec_rate(args.scenario, short, 2, args.vec_steps, policy_s=policy_s),
+            "async 1 env, batch 1": lambda: async_rate(args.scenario, short, 1, 1, args.vec_steps, policy_s=policy_s),
+            "async 2 envs, batch 1": lambda: async_rate(args.scenario, short, 2, 1, 2 * args.vec_steps,
+                                                        policy_s=policy_s),
         }
         seen = {name: [] for name in measure}
         for _ in range(3):  # alternating: every measurement of a round sees about the same load
