@@ -11,7 +11,7 @@
    environment and step);
 4. (--async, alone) VecEnv stepped asynchronously: 2 environments, batch_size 1 (send/recv, a trivial policy that
    sends no action), and 1 environment so, beside the synchronous VecEnv of 1 and 2 environments and the engine's
-   1 -> 2 workers, all alternating in 3 rounds (best of each);
+   1 -> 2 workers, all alternating in 3 rounds (best of each); --policy-us adds busy Python per decision;
 Wall-clock numbers: run on a quiet machine and report them with the machine.
 """
 

@@ -281,7 +281,8 @@ class BatchPool {
       watch(obs);
       watch(infos);
       if (!hidden.is_none()) watch(hidden);
-      for (const py::handle array : {py::handle(batch->rewards), py::handle(batch->terminated), py::handle(batch->truncated)}) {
+      for (const py::handle array :
+           {py::handle(batch->rewards), py::handle(batch->terminated), py::handle(batch->truncated)}) {
         arrays.emplace_back(py::reinterpret_borrow<py::object>(array), 0);
       }
       for (auto& [array, at_rest] : arrays) at_rest = array.ref_count();

@@ -323,8 +323,9 @@ def test_hidden_child_state_on_explicit_request(scenario):
 def play_async(vec, seed, episodes_per_env, pick):
     """Plays `vec` asynchronously with one Mover per environment until each environment has finished
     `episodes_per_env` episodes; `pick(held, in_flight)` picks which of the received environments are sent back
-    now (the others wait for later rounds; at least one when none is in flight). Returns per environment the list of its episodes, each a list of per-step entries
-    (row expectation, reward, terminated, truncated, events, episode index) and the episode's final info."""
+    now (the others wait for later rounds; at least one when none is in flight). Returns per environment the list
+    of its episodes, each {"episode": index, "info": final info (None while running), "steps": per step (row
+    fields, reward, terminated, truncated, events)}."""
     items = list(vec.item_names)
     vec.async_reset(seed=seed)
     policies = [None] * vec.num_envs
