@@ -509,3 +509,14 @@ def test_arrays_handed_out_are_never_overwritten(scenario):
         numpy.testing.assert_array_equal(view, view_copy)
     numpy.testing.assert_array_equal(single[0], single[1])
     vec.close()
+    hidden = freeplay.VecEnv(2, scenario, SHORT, privileged=True)
+    hidden.reset(seed=3)
+    kept = []
+    for step in range(60):
+        infos = hidden.step([[], []])[4]
+        if step % 10 == 0:  # only the privileged dict is kept, not the infos around it
+            kept.append((infos["privileged"], {key: value.copy() for key, value in infos["privileged"].items()}))
+    assert any(numpy.isfinite(copies["motivation"]).any() for _, copies in kept)
+    for held, copies in kept:
+        for key, value in copies.items():
+            numpy.testing.assert_array_equal(held[key], value)
