@@ -77,6 +77,9 @@ function(freeplay_add_test name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;LABELS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   freeplay_unity_build(${name} 8)
+  # -O1 for the tests' own code: 15 % less compile time, the same test CPU time (docs/performance.md); the libraries
+  # they test keep the build type's flags.
+  target_compile_options(${name} PRIVATE $<$<CONFIG:Release>:-O1>)
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gmock GTest::gtest_main)
   target_compile_options(${name} PRIVATE ${FREEPLAY_WARNINGS})
   set(properties ENVIRONMENT "FREEPLAY_ASSETS_DIR=${PROJECT_SOURCE_DIR}/assets")
