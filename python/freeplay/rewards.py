@@ -1,23 +1,39 @@
-"""Reward functions for :class:`freeplay.Env` over observable events and coded labels (never hidden child state).
+"""Reward functions for :class:`freeplay.Env` and :class:`freeplay.VecEnv` over observable events and coded labels
+(never hidden child state).
 
-A reward function takes a :class:`freeplay.env.Step` and returns a float.
+A reward function takes a :class:`freeplay.env.Step` and returns a float. The built-in rewards below are computed
+in C++ (python/src/vec_env.cpp, one home for both fronts): an Env calls them like any callable, and a VecEnv given
+one computes every environment's reward inside its batched step without calling Python. Any other callable is
+called in Python, once per environment and step.
 """
 
+from . import _freeplay
+
 #: The coder's social-engagement labels that count as playing together (PInSoRo names).
-JOINT_PLAY = ("associative", "cooperative")
+JOINT_PLAY = tuple(_freeplay.JOINT_PLAY)
 
 
-def zero(step):
-    """No reward."""
-    return 0.0
+class Builtin:
+    """A built-in reward: a callable over a :class:`freeplay.env.Step` like any reward, whose C++ fast path
+    ``native`` names."""
+
+    def __init__(self, native, doc):
+        self.native = native
+        self.__doc__ = doc
+
+    def __call__(self, step):
+        social = [labels.get("social_engagement", "") for labels in step.coded.values()]
+        return _freeplay._builtin_reward(self.native, step.dt, social)
+
+    def __repr__(self):
+        return f"freeplay.rewards.{self.native}"
 
 
-def session_length(step):
-    """The free-play seconds of this step: the return is the session's length (children who stay, play longer)."""
-    return step.dt
-
-
-def coded_joint_play(step):
-    """The seconds of this step in which a child is coded as playing with the robot (associative or
-    cooperative social engagement)."""
-    return step.dt if any(labels.get("social_engagement") in JOINT_PLAY for labels in step.coded.values()) else 0.0
+zero = Builtin("zero", "No reward.")
+session_length = Builtin(
+    "session_length",
+    "The free-play seconds of this step: the return is the session's length (children who stay, play longer).")
+coded_joint_play = Builtin(
+    "coded_joint_play",
+    "The seconds of this step in which a child is coded as playing with the robot (associative or cooperative "
+    "social engagement).")

@@ -1,6 +1,6 @@
-// The episode stepper behind freeplay.Env: the real episode loop runs on a worker thread; its policy posts each
-// decision's observation (with the observable events and coded labels since the previous one) and waits for the
-// actions that `act` hands over. The GIL is released while C++ runs.
+// The episode stepper behind freeplay.Env (env_episode.hpp): the real episode loop runs on a worker thread; its policy
+// posts each decision's observation (with the observable events and coded labels since the previous one) and waits
+// for the actions that `act` hands over. The GIL is released while C++ runs.
 
 #include <fmt/format.h>
 #include <pybind11/stl.h>
@@ -8,14 +8,17 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <condition_variable>
 #include <exception>
+#include <functional>
 #include <mutex>
 #include <optional>
 #include <thread>
 
 #include "bindings.hpp"
 #include "env_channel.hpp"
+#include "env_episode.hpp"
 #include "freeplay/agents/labels.hpp"
 #include "freeplay/core/error.hpp"
 #include "freeplay/runner/episode.hpp"
@@ -24,16 +27,6 @@
 namespace freeplay::python {
 
 namespace {
-
-/// One decision handed to Python: the observation and what happened since the previous decision.
-struct Decision {
-  policies::Observation observation;                 ///< what the policy sees
-  std::vector<nlohmann::json> events;                ///< event-log entries since the previous decision
-  std::vector<policies::ActionResult> results;       ///< moves and utterances that ended since then
-  std::map<std::string, std::vector<std::string>> coded;  ///< per child seat: the coder's current labels
-  /// Per child seat: the child model's hidden state; filled only for an Env that asked for privileged information.
-  std::map<std::string, runner::ChildHiddenState> privileged;
-};
 
 /// How long a thread that waits for the other side of an episode (the stepping thread for the next decision, the
 /// worker for the actions) polls before it sleeps on the condition variable. A decision costs about 10 µs of
@@ -65,189 +58,167 @@ bool poll_briefly(Done done) {
   return true;
 }
 
-class EnvEpisode;
+}  // namespace
+
+bool poll_before_sleeping(const std::function<bool()>& done) { return poll_briefly(done); }
+
+namespace {
+
+/// True when two zone lists are the same (colours, centroids and polygons).
+bool same_zones(const std::vector<policies::ZoneObservation>& a, const std::vector<policies::ZoneObservation>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t z = 0; z < a.size(); ++z) {
+    if (a[z].colour != b[z].colour || a[z].centroid != b[z].centroid || a[z].polygon != b[z].polygon) return false;
+  }
+  return true;
+}
+
 thread_local EnvEpisode* t_env_episode = nullptr;  // the episode the current worker thread runs, if any
 
-/// One episode of an Env: a worker thread running runner::run_episode and the decision channel.
-class EnvEpisode {
+/// The observer that feeds events and coded labels to an EnvEpisode's decisions.
+class DecisionObserver final : public runner::EpisodeObserver {
  public:
-  /// Loads the scenario (as `freeplay run` would) for stepping; it must be a child-robot scenario.
-  /// `privileged` also keeps the children's hidden state at each decision (Env(privileged=True)).
-  EnvEpisode(const std::string& file, const std::vector<std::string>& overrides, bool perceives_children,
-             bool privileged)
-      : perceives_children_(perceives_children), privileged_(privileged) {
-    auto suite = scenario::single_scenario_suite(file, overrides, python_vocabulary());
-    scenario_ = std::move(suite.variants.front().scenario);
-    if (scenario_.condition != scenario::Condition::ChildRobot) {
-      throw InputError(fmt::format("freeplay.Env steps the robot, but scenario '{}' is {}", scenario_.name,
-                                   scenario::to_string(scenario_.condition)),
-                       "condition", std::string(scenario::to_string(scenario::Condition::ChildRobot)), {file, 1, 1});
-    }
-    scenario_.robot.policy = std::string(policies::kPythonPolicyPrefix) + "env";
-  }
-  ~EnvEpisode() { stop_worker(); }
-  EnvEpisode(const EnvEpisode&) = delete;
-  EnvEpisode& operator=(const EnvEpisode&) = delete;
-
-  /// Starts the episode with root seed `seed` and waits for its first decision (or its end).
-  void start(std::uint64_t seed) {
-    stop_worker();
-    {
-      std::lock_guard lock(mutex_);
-      state_ = State::Running;
-      result_.reset();
-      error_ = nullptr;
-      pending_ = Decision{};
-      stop_.store(false);
-    }
-    worker_ = std::thread([this, seed] { work(seed); });
-    wait();
-  }
-
-  /// Hands the actions of the current decision to the episode (returns at once).
-  void hand(std::vector<policies::Action> actions) {
-    std::lock_guard lock(mutex_);
-    if (state_ != State::Deciding) throw InputError("step() after the episode ended: call reset()", "step", "reset(), then step()");
-    actions_ = std::move(actions);
-    state_ = State::Running;
-    cv_.notify_all();
-  }
-
-  /// Waits until the episode asks for the next decision or ends; rethrows what stopped it.
-  void wait() {
-    poll_briefly([&] { return state_.load() != State::Running; });
-    std::unique_lock lock(mutex_);
-    cv_.wait(lock, [&] { return state_ != State::Running; });
-    if (error_) {
-      auto error = error_;
-      error_ = nullptr;
-      std::rethrow_exception(error);
-    }
-  }
-
-  /// True when the episode has ended.
-  bool finished() const { return state_ == State::Finished; }
-  /// The current decision (the last one once the episode ended).
-  const Decision& decision() const { return decided_; }
-  /// The record of the finished episode (its line of episodes.jsonl), or null.
-  nlohmann::json record() const { return result_ ? result_->record : nlohmann::json(); }
-  /// The finished episode's event log as JSON Lines.
-  std::string events_jsonl() const { return result_ ? result_->events.to_jsonl() : std::string(); }
-  /// True when free play stopped at the cap.
-  bool hit_cap() const { return result_ && result_->hit_cap; }
-
-  /// Called by the channel policy on the worker thread at each decision: posts it and waits for the actions.
-  std::vector<policies::Action> decide(const policies::Observation& observation) {
-    std::unique_lock lock(mutex_);
-    pending_.observation = observation;
-    decided_ = std::move(pending_);
-    pending_ = Decision{};
-    state_ = State::Deciding;
-    cv_.notify_all();
-    lock.unlock();
-    poll_briefly([&] { return state_.load() != State::Deciding || stop_.load(); });
-    lock.lock();
-    cv_.wait(lock, [&] { return state_ != State::Deciding || stop_.load(); });
-    return stop_.load() ? std::vector<policies::Action>{} : std::move(actions_);
-  }
-  /// Called by the channel policy when a move or an utterance ended.
-  void result(const policies::ActionResult& r) {
-    std::lock_guard lock(mutex_);
-    pending_.results.push_back(r);
-  }
-  /// Called by the observer at every free-play tick.
-  void observe(const runner::EpisodeSnapshot& snapshot) {
-    std::lock_guard lock(mutex_);
-    for (const auto& e : snapshot.new_events) pending_.events.push_back(e.to_json());
-    if (snapshot.stage != "freeplay") return;
-    for (const auto& child : snapshot.children) {
-      auto& labels = pending_.coded[child.seat];
-      labels.assign(child.coded.begin(), child.coded.end());
-      if (privileged_) pending_.privileged[child.seat] = child.hidden;
-    }
-  }
-  /// Called by the channel policy when the episode resets it: keeps the policy's context and random stream.
-  void reset_policy(const policies::PolicyContext& context, Rng rng) {
-    std::lock_guard lock(mutex_);
-    context_ = context;
-    policy_rng_ = rng;
-  }
-  /// The context the episode gave its policy.
-  const policies::PolicyContext& context() const { return context_; }
-  /// The policy's random stream as the episode handed it over (the same as a run's policy gets).
-  Rng policy_rng() const { return policy_rng_; }
-  /// The channel policy's perceives_children().
-  bool perceives_children() const { return perceives_children_; }
-  /// True when the decisions carry the children's hidden state.
-  bool privileged() const { return privileged_; }
+  explicit DecisionObserver(EnvEpisode& episode) : episode_(episode) {}
+  void observe(const runner::EpisodeSnapshot& snapshot) override { episode_.observe(snapshot); }
 
  private:
-  enum class State { Running, Deciding, Finished };
+  EnvEpisode& episode_;
+};
 
-  /// The observer that feeds events and coded labels to the decisions.
-  class Observer final : public runner::EpisodeObserver {
-   public:
-    explicit Observer(EnvEpisode& episode) : episode_(episode) {}
-    void observe(const runner::EpisodeSnapshot& snapshot) override { episode_.observe(snapshot); }
+}  // namespace
 
-   private:
-    EnvEpisode& episode_;
-  };
+EnvEpisode::EnvEpisode(const std::string& file, const std::vector<std::string>& overrides, bool perceives_children,
+                       bool privileged)
+    : perceives_children_(perceives_children), privileged_(privileged) {
+  auto suite = scenario::single_scenario_suite(file, overrides, python_vocabulary());
+  scenario_ = std::move(suite.variants.front().scenario);
+  if (scenario_.condition != scenario::Condition::ChildRobot) {
+    throw InputError(fmt::format("freeplay.Env steps the robot, but scenario '{}' is {}", scenario_.name,
+                                 scenario::to_string(scenario_.condition)),
+                     "condition", std::string(scenario::to_string(scenario::Condition::ChildRobot)), {file, 1, 1});
+  }
+  scenario_.robot.policy = std::string(policies::kPythonPolicyPrefix) + "env";
+}
 
-  void work(std::uint64_t seed) {
-    t_env_episode = this;
-    g_live_workers.fetch_add(1);
-    std::optional<runner::EpisodeResult> result;
-    std::exception_ptr error;
-    try {
-      runner::EpisodeObservers observers;
-      observers.push_back(std::make_unique<Observer>(*this));
-      result = runner::run_episode({.scenario = scenario_, .seed = seed, .stop = stop_, .id = scenario_.name + "-env"},
-                                   runner::observed_by(observers));
-    } catch (...) {
-      error = std::current_exception();
-    }
-    t_env_episode = nullptr;
-    g_live_workers.fetch_sub(1);
+EnvEpisode::~EnvEpisode() { stop_worker(); }
+
+void EnvEpisode::start(std::uint64_t seed) {
+  stop_worker();
+  {
     std::lock_guard lock(mutex_);
-    if (result && !result->aborted) result_ = std::move(result);
-    error_ = error;
-    if (!pending_.events.empty() || !pending_.results.empty()) {  // what happened after the last decision
-      for (auto& e : pending_.events) decided_.events.push_back(std::move(e));
-      for (auto& r : pending_.results) decided_.results.push_back(r);
-      for (auto& [seat, labels] : pending_.coded) decided_.coded[seat] = labels;
-      for (auto& [seat, hidden] : pending_.privileged) decided_.privileged[seat] = hidden;
-    }
-    state_ = State::Finished;
+    state_ = State::Running;
+    result_.reset();
+    error_ = nullptr;
+    pending_ = Decision{};
+    stop_.store(false);
+  }
+  worker_ = std::thread([this, seed] { work(seed); });
+  wait();
+}
+
+void EnvEpisode::hand(std::vector<policies::Action> actions) {
+  std::lock_guard lock(mutex_);
+  if (state_ != State::Deciding) throw InputError("step() after the episode ended: call reset()", "step", "reset(), then step()");
+  actions_ = std::move(actions);
+  state_ = State::Running;
+  cv_.notify_all();
+}
+
+void EnvEpisode::wait() {
+  poll_briefly([&] { return state_.load() != State::Running; });
+  std::unique_lock lock(mutex_);
+  cv_.wait(lock, [&] { return state_ != State::Running; });
+  if (error_) {
+    auto error = error_;
+    error_ = nullptr;
+    std::rethrow_exception(error);
+  }
+}
+
+std::vector<policies::Action> EnvEpisode::decide(const policies::Observation& observation) {
+  // decided_ is written only on this thread, so reading it here needs no lock; comparing the zones here keeps the
+  // comparison off the stepping thread, which then compares version numbers.
+  const bool zones_changed = !same_zones(observation.zones, decided_.observation.zones);
+  std::unique_lock lock(mutex_);
+  pending_.observation = observation;  // reuses the buffers of the decision before the last one
+  pending_.zones_version = decided_.zones_version + (zones_changed ? 1U : 0U);
+  std::swap(decided_, pending_);
+  pending_.events.clear();
+  pending_.results.clear();
+  pending_.coded.clear();
+  pending_.privileged.clear();
+  state_ = State::Deciding;
+  cv_.notify_all();
+  lock.unlock();
+  if (signal_) signal_->post();
+  poll_briefly([&] { return state_.load() != State::Deciding || stop_.load(); });
+  lock.lock();
+  cv_.wait(lock, [&] { return state_ != State::Deciding || stop_.load(); });
+  return stop_.load() ? std::vector<policies::Action>{} : std::move(actions_);
+}
+
+void EnvEpisode::result(const policies::ActionResult& r) {
+  std::lock_guard lock(mutex_);
+  pending_.results.push_back(r);
+}
+
+void EnvEpisode::observe(const runner::EpisodeSnapshot& snapshot) {
+  std::lock_guard lock(mutex_);
+  for (const auto& e : snapshot.new_events) pending_.events.push_back(e.to_json());
+  if (snapshot.stage != "freeplay") return;
+  for (const auto& child : snapshot.children) {
+    auto& labels = pending_.coded[child.seat];
+    labels.assign(child.coded.begin(), child.coded.end());
+    if (privileged_) pending_.privileged[child.seat] = child.hidden;
+  }
+}
+
+void EnvEpisode::reset_policy(const policies::PolicyContext& context, Rng rng) {
+  std::lock_guard lock(mutex_);
+  context_ = context;
+  policy_rng_ = rng;
+}
+
+void EnvEpisode::work(std::uint64_t seed) {
+  t_env_episode = this;
+  g_live_workers.fetch_add(1);
+  std::optional<runner::EpisodeResult> result;
+  std::exception_ptr error;
+  try {
+    runner::EpisodeObservers observers;
+    observers.push_back(std::make_unique<DecisionObserver>(*this));
+    result = runner::run_episode({.scenario = scenario_, .seed = seed, .stop = stop_, .id = scenario_.name + "-env"},
+                                 runner::observed_by(observers));
+  } catch (...) {
+    error = std::current_exception();
+  }
+  t_env_episode = nullptr;
+  g_live_workers.fetch_sub(1);
+  std::lock_guard lock(mutex_);
+  if (result && !result->aborted) result_ = std::move(result);
+  error_ = error;
+  if (!pending_.events.empty() || !pending_.results.empty()) {  // what happened after the last decision
+    for (auto& e : pending_.events) decided_.events.push_back(std::move(e));
+    for (auto& r : pending_.results) decided_.results.push_back(r);
+    for (auto& [seat, labels] : pending_.coded) decided_.coded[seat] = labels;
+    for (auto& [seat, hidden] : pending_.privileged) decided_.privileged[seat] = hidden;
+  }
+  state_ = State::Finished;
+  cv_.notify_all();
+  if (signal_) signal_->post();
+}
+
+void EnvEpisode::stop_worker() {
+  if (!worker_.joinable()) return;
+  {
+    std::lock_guard lock(mutex_);
+    stop_.store(true);
     cv_.notify_all();
   }
+  worker_.join();
+}
 
-  void stop_worker() {
-    if (!worker_.joinable()) return;
-    {
-      std::lock_guard lock(mutex_);
-      stop_.store(true);
-      cv_.notify_all();
-    }
-    worker_.join();
-  }
-
-  scenario::Scenario scenario_;
-  bool perceives_children_ = false;
-  bool privileged_ = false;
-  std::thread worker_;
-  std::mutex mutex_;
-  std::condition_variable cv_;
-  std::atomic<State> state_ = State::Finished;  // written under mutex_, polled without it
-  std::atomic<bool> stop_{false};
-  Decision pending_;
-  Decision decided_;
-  std::vector<policies::Action> actions_;
-  std::optional<runner::EpisodeResult> result_;
-  std::exception_ptr error_;
-  policies::PolicyContext context_;
-  Rng policy_rng_;
-};
+namespace {
 
 /// The policy of an Env episode: forwards decisions and results to its EnvEpisode.
 class ChannelPolicy final : public policies::PlayPolicy {
@@ -267,10 +238,7 @@ py::dict decision_info(const EnvEpisode& e) {
   const auto& d = e.decision();
   py::dict info;
   py::list events;
-  if (!d.events.empty()) {
-    const auto loads = py::module_::import("json").attr("loads");
-    for (const auto& event : d.events) events.append(loads(event.dump()));
-  }
+  for (const auto& event : d.events) events.append(json_to_python(event));
   info["events"] = events;
   info["results"] = py::cast(d.results);
   info["coded"] = py::cast(d.coded);
@@ -297,6 +265,32 @@ py::dict decision_info(const EnvEpisode& e) {
 
 }  // namespace
 
+py::object json_to_python(const nlohmann::json& value) {
+  switch (value.type()) {
+    case nlohmann::json::value_t::null: return py::none();
+    case nlohmann::json::value_t::boolean: return py::bool_(value.get<bool>());
+    case nlohmann::json::value_t::number_integer: return py::int_(value.get<std::int64_t>());
+    case nlohmann::json::value_t::number_unsigned: return py::int_(value.get<std::uint64_t>());
+    case nlohmann::json::value_t::number_float: {
+      const double x = value.get<double>();
+      return std::isfinite(x) ? py::object(py::float_(x)) : py::object(py::none());  // as its JSON text reads back
+    }
+    case nlohmann::json::value_t::string: return py::str(value.get_ref<const std::string&>());
+    case nlohmann::json::value_t::array: {
+      py::list list(value.size());
+      std::size_t i = 0;
+      for (const auto& element : value) list[i++] = json_to_python(element);
+      return list;
+    }
+    case nlohmann::json::value_t::object: {
+      py::dict dict;
+      for (const auto& [key, element] : value.items()) dict[py::str(key)] = json_to_python(element);
+      return dict;
+    }
+    default: return py::none();  // binary and discarded values do not occur in records and events
+  }
+}
+
 std::unique_ptr<policies::PlayPolicy> make_env_channel_policy() {
   if (t_env_episode == nullptr) return nullptr;
   return std::make_unique<ChannelPolicy>(*t_env_episode);
@@ -319,27 +313,8 @@ void bind_env(py::module_& m) {
       .def("info", &decision_info)
       .def_property_readonly("context", &EnvEpisode::context)
       .def_property_readonly("policy_rng", &EnvEpisode::policy_rng)
-      .def("record", [](const EnvEpisode& e) { return py::module_::import("json").attr("loads")(e.record().dump()); })
+      .def("record", [](const EnvEpisode& e) { return json_to_python(e.record()); })
       .def("events_jsonl", &EnvEpisode::events_jsonl);
-  m.def("_act_all", [](const std::vector<EnvEpisode*>& episodes, const std::vector<py::object>& actions) {
-    if (episodes.size() != actions.size()) {
-      throw InputError(fmt::format("{} action lists for {} environments", actions.size(), episodes.size()), "actions",
-                       "one action list per environment");
-    }
-    std::vector<std::vector<policies::Action>> parsed;
-    for (const auto& a : actions) parsed.push_back(actions_from_python(a, "freeplay.VecEnv"));
-    py::gil_scoped_release release;
-    for (std::size_t i = 0; i < episodes.size(); ++i) episodes[i]->hand(std::move(parsed[i]));
-    std::exception_ptr error;
-    for (auto* e : episodes) {
-      try {
-        e->wait();
-      } catch (...) {
-        if (!error) error = std::current_exception();
-      }
-    }
-    if (error) std::rethrow_exception(error);
-  }, py::arg("episodes"), py::arg("actions"), "Hands each episode its actions, then waits for all (in parallel).");
 }
 
 }  // namespace freeplay::python

@@ -49,4 +49,5 @@ PYBIND11_MODULE(_freeplay, m) {
   bind_policies(m);
   bind_experiments(m);
   bind_env(m);
+  bind_vec_env(m);
 }

@@ -175,6 +175,7 @@ bool append_action(const py::handle& item, std::vector<Action>& out) {
 
 std::vector<Action> actions_from_python(const py::handle& returned, const std::string& policy) {
   std::vector<Action> actions;
+  if (PyList_CheckExact(returned.ptr()) && PyList_GET_SIZE(returned.ptr()) == 0) return actions;  // the common "no action"
   if (returned.is_none() || append_action(returned, actions)) return actions;
   const auto bad = [&](const py::handle& what) {
     return InputError(fmt::format("policy '{}' returned {} from decide(), which is not an action", policy,

@@ -39,6 +39,10 @@ class Discrete(Space):
     pass
 
 
+class MultiBinary(Space):
+    pass
+
+
 class Text(Space):
     pass
 
@@ -67,6 +71,8 @@ print(json.dumps({
     "position": env.observation_space["self"]["arm_reach_centre"].kwargs["shape"],
     "action": type(env.action_space).__name__,
     "vec_single": type(vec.single_action_space).__name__,
+    "vec_observation": type(vec.single_observation_space).__name__,
+    "vec_pose": vec.single_observation_space["item_pose"].kwargs["shape"],
     "layout": sorted(env.observation_layout),
     "t": obs.t,
 }))
@@ -103,5 +109,6 @@ def test_with_gymnasium_the_spaces_are_gymnasium_spaces_and_the_env_is_registere
     assert (seen["observation"], seen["items"], seen["action"], seen["vec_single"]) == (
         "Dict", "Sequence", "Sequence", "Sequence")
     assert seen["position"] == [2]
+    assert seen["vec_observation"] == "Dict" and seen["vec_pose"][1] == 3
     assert {"t", "items", "self"} <= set(seen["layout"])
     assert seen["t"] >= 0.0
