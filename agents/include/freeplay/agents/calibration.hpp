@@ -107,7 +107,7 @@ struct FitResult {
 };
 
 /// The fitting loss over the given targets only: every checked child-child row and the child-robot duration rows,
-/// each as its distance to the target in units of the band's half-width, squared, plus a steep penalty beyond 0.6 of
+/// each as its distance to the target in units of the band's half-width, squared, plus a steep penalty beyond 0.8 of
 /// it; the child-child label changes per minute (no band) enter with a light weight. Child-robot label statistics
 /// never enter (they are predictions). `outside` receives the number of checked rows outside their bands.
 double fit_loss(const std::vector<ComparisonRow>& rows, int* outside = nullptr);
