@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "freeplay/agents/labels.hpp"
 #include "freeplay/analysis/baseline.hpp"
@@ -36,14 +38,19 @@ double mean_of(const Sample& sample, const std::string& metric) {
   return mean(values);
 }
 
-/// `sample` with the derived joint-play share added to each episode that has both shares.
+/// `sample` with the derived joint-play share (the shares of agents::kJointPlay) added to each episode that has them.
 Sample with_joint_play(Sample sample) {
-  const auto associative = share_metric("associative");
-  const auto cooperative = share_metric("cooperative");
+  std::vector<std::string> metrics;
+  for (const auto label : agents::kJointPlay) metrics.push_back(share_metric(std::string(agents::name(label))));
   for (auto& e : sample.episodes) {
-    const auto a = e.metrics.find(associative);
-    const auto c = e.metrics.find(cooperative);
-    if (a != e.metrics.end() && c != e.metrics.end()) e.metrics[kJointPlayMetric] = a->second + c->second;
+    double joint = 0.0;
+    bool complete = true;
+    for (const auto& metric : metrics) {
+      const auto found = e.metrics.find(metric);
+      complete = complete && found != e.metrics.end();
+      if (found != e.metrics.end()) joint += found->second;
+    }
+    if (complete) e.metrics[kJointPlayMetric] = joint;
   }
   return sample;
 }

@@ -47,13 +47,9 @@ BuiltinReward builtin_reward_named(const std::string& name) {
   throw InputError(fmt::format("no built-in reward '{}'", name), "reward", "zero, session_length, coded_joint_play");
 }
 
-/// The social-engagement labels that count as playing together (coded_joint_play; freeplay.rewards.JOINT_PLAY).
-constexpr std::array<agents::SocialEngagement, 2> kJointPlay = {agents::SocialEngagement::Associative,
-                                                                agents::SocialEngagement::Cooperative};
-
-/// True for a social-engagement label in kJointPlay.
+/// True for a social-engagement label of joint play (agents::kJointPlay; freeplay.rewards.JOINT_PLAY).
 bool joint_play(std::string_view social_engagement) {
-  for (const auto label : kJointPlay) {
+  for (const auto label : agents::kJointPlay) {
     if (social_engagement == agents::name(label)) return true;
   }
   return false;
@@ -789,8 +785,10 @@ void bind_vec_env(py::module_& m) {
     labels[a] = names;
   }
   m.attr("LABELS") = labels;  // per axis (task, social engagement, social attitude), the labels in coding order
-  py::tuple joint(kJointPlay.size());
-  for (std::size_t k = 0; k < kJointPlay.size(); ++k) joint[k] = py::str(std::string(agents::name(kJointPlay[k])));
+  py::tuple joint(agents::kJointPlay.size());
+  for (std::size_t k = 0; k < agents::kJointPlay.size(); ++k) {
+    joint[k] = py::str(std::string(agents::name(agents::kJointPlay[k])));
+  }
   m.attr("JOINT_PLAY") = joint;
 }
 

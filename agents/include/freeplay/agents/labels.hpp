@@ -22,6 +22,9 @@ inline constexpr std::size_t kMaxLabels = 5;
 enum class TaskEngagement : std::uint8_t { GoalOriented, Aimless, AdultSeeking, NoPlay };
 /// Social engagement labels (Parten's stages minus "unoccupied"), in the order of the coding scheme.
 enum class SocialEngagement : std::uint8_t { Solitary, Onlooker, Parallel, Associative, Cooperative };
+/// The social-engagement labels that count as playing together (joint play: associative and cooperative).
+inline constexpr std::array<SocialEngagement, 2> kJointPlay = {SocialEngagement::Associative,
+                                                               SocialEngagement::Cooperative};
 /// Social attitude labels, in the order of the coding scheme.
 enum class SocialAttitude : std::uint8_t { Prosocial, Adversarial, Assertive, Frustrated, Passive };
 
