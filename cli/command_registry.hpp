@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "program.hpp"
+
 namespace freeplay::cli {
 
 /// Adds one subcommand (with its options and callback) to the program.
@@ -42,10 +44,6 @@ struct RegisterLister {
     registered_listers().push_back({std::move(what), std::move(description), std::move(print)});
   }
 };
-
-/// Parses the command line against every registered subcommand and runs it; returns the exit status (2 on bad
-/// input, with the error on stderr).
-int run_program(int argc, char** argv);
 
 /// Exit status for a failure that is not bad input (e.g. no path found): makes CLI11 exit with `code`.
 [[noreturn]] inline void fail_with(int code) { throw CLI::RuntimeError(code); }

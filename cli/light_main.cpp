@@ -6,7 +6,7 @@
 
 #include <string_view>
 
-#include "command_registry.hpp"
+#include "program.hpp"
 #include "sibling_program.hpp"
 
 int main(int argc, char** argv) {

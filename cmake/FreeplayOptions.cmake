@@ -37,13 +37,14 @@ function(freeplay_precompile_headers target)
   endif()
 endfunction()
 
-# Unity builds for the targets whose units share the most header code (docs/performance.md, "Unity builds"): the
-# command units of `freeplay-full` (CLI11's inline code and static validators, fmt's formatting) and each test
-# executable's units (GoogleTest, the libraries' headers), compiled in batches of up to UNITY_BUILD_BATCH_SIZE files
-# per compile instead of one compile each. A unit whose file-local helpers share a name with a neighbour's is marked
-# SKIP_UNITY_BUILD_INCLUSION in its folder's CMakeLists.txt. FREEPLAY_UNITY=OFF compiles every unit alone (e.g. to
-# check that every file includes what it uses).
-option(FREEPLAY_UNITY "Compile freeplay-full's commands and each test executable's units as unity builds" ON)
+# Unity builds (docs/performance.md, "Unity builds"): the libraries' units, the command units of `freeplay-full`
+# (CLI11's inline code and static validators, fmt's formatting) and each test executable's units (GoogleTest, the
+# libraries' headers), compiled in batches of up to UNITY_BUILD_BATCH_SIZE files per compile instead of one compile
+# each, so the inline and template code they share is compiled once per batch. A unit whose file-local names clash
+# with a neighbour's, or whose class defined in a header holds a file-local type (GCC's -Wsubobject-linkage), is
+# marked SKIP_UNITY_BUILD_INCLUSION in its folder's CMakeLists.txt. FREEPLAY_UNITY=OFF compiles every unit alone
+# (e.g. to check that every file includes what it uses).
+option(FREEPLAY_UNITY "Compile the libraries, freeplay-full's commands and each test executable as unity builds" ON)
 
 # freeplay_unity_build(TARGET BATCH_SIZE): TARGET's units compiled BATCH_SIZE at a time (with FREEPLAY_UNITY).
 function(freeplay_unity_build target batch_size)

@@ -10,12 +10,13 @@
 #include <set>
 
 #include "freeplay/core/rng.hpp"
+#include "report_values.hpp"
 
 namespace freeplay::analysis {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using detail::kNaN;
 constexpr const char* kHigherIsBetter = "higher_is_better";
 constexpr const char* kLowerIsBetter = "lower_is_better";
 

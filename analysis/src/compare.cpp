@@ -10,21 +10,16 @@
 
 #include "freeplay/core/error.hpp"
 #include "freeplay/core/rng.hpp"
+#include "report_values.hpp"
 
 namespace freeplay::analysis {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using detail::kNaN;
+using detail::json_number;
 
-std::vector<double> values_of(const std::vector<EpisodeValues>& episodes, const std::string& metric) {
-  std::vector<double> out;
-  for (const auto& e : episodes) {
-    const auto it = e.metrics.find(metric);
-    if (it != e.metrics.end() && !std::isnan(it->second)) out.push_back(it->second);
-  }
-  return out;
-}
+using detail::values_of;
 
 /// Seed → value of one metric; empty when a seed repeats (pairing by seed is then impossible).
 std::map<std::uint64_t, double> values_by_seed(const std::vector<EpisodeValues>& episodes, const std::string& metric) {
@@ -82,10 +77,10 @@ std::string number(double v) { return std::isnan(v) ? "–" : fmt::format("{:.4g
 std::string interval(const Interval& i) { return fmt::format("[{}, {}]", number(i.low), number(i.high)); }
 std::string p_text(double p) { return std::isnan(p) ? "–" : (p < 0.001 ? "<0.001" : fmt::format("{:.3f}", p)); }
 
-nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
-nlohmann::json interval_json(const Interval& i) { return {num(i.low), num(i.high)}; }
+nlohmann::json interval_json(const Interval& i) { return {json_number(i.low), json_number(i.high)}; }
 nlohmann::json rank_json(const RankTest& t) {
-  return {{"statistic", num(t.statistic)}, {"z", num(t.z)}, {"p", num(t.p_value)}, {"exact", t.exact}, {"n", t.n}};
+  return {{"statistic", json_number(t.statistic)}, {"z", json_number(t.z)}, {"p", json_number(t.p_value)},
+          {"exact", t.exact}, {"n", t.n}};
 }
 
 /// Display width of UTF-8 text (counts code points; every character used here is one column wide).
@@ -232,24 +227,25 @@ nlohmann::json comparison_json(const Comparison& c) {
   nlohmann::json metrics = nlohmann::json::array();
   for (const auto& m : c.metrics) {
     auto side = [](const SideSummary& s) {
-      return nlohmann::json{{"n", s.n}, {"mean", num(s.mean)}, {"sd", num(s.sd)}, {"ci", interval_json(s.ci)}};
+      return nlohmann::json{
+          {"n", s.n}, {"mean", json_number(s.mean)}, {"sd", json_number(s.sd)}, {"ci", interval_json(s.ci)}};
     };
     nlohmann::json row = {{"metric", m.metric},
                           {"a", side(m.a)},
                           {"b", side(m.b)},
-                          {"difference", num(m.difference)},
+                          {"difference", json_number(m.difference)},
                           {"difference_ci", interval_json(m.difference_ci)},
-                          {"cohens_d", num(m.cohens_d)},
-                          {"cliffs_delta", num(m.cliffs_delta)},
+                          {"cohens_d", json_number(m.cohens_d)},
+                          {"cliffs_delta", json_number(m.cliffs_delta)},
                           {"mann_whitney", rank_json(m.mann_whitney)},
-                          {"p_holm", num(m.p_holm)},
+                          {"p_holm", json_number(m.p_holm)},
                           {"significant", m.significant}};
     if (m.paired) {
       row["paired"] = {{"pairs", m.paired->pairs},
-                       {"mean_difference", num(m.paired->mean_difference)},
+                       {"mean_difference", json_number(m.paired->mean_difference)},
                        {"ci", interval_json(m.paired->ci)},
                        {"wilcoxon", rank_json(m.paired->wilcoxon)},
-                       {"p_holm", num(m.paired->p_holm)}};
+                       {"p_holm", json_number(m.paired->p_holm)}};
     } else {
       row["paired"] = nullptr;
     }

@@ -7,12 +7,13 @@
 #include <numeric>
 
 #include "freeplay/core/rng.hpp"
+#include "report_values.hpp"
 
 namespace freeplay::analysis {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using detail::kNaN;
 
 /// Two-sided p-value of a standard normal score.
 double two_sided_normal_p(double z) {

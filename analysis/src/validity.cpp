@@ -11,26 +11,20 @@
 #include "freeplay/agents/labels.hpp"
 #include "freeplay/analysis/baseline.hpp"
 #include "freeplay/core/error.hpp"
+#include "report_values.hpp"
 
 namespace freeplay::analysis {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using detail::kNaN;
+using detail::values_of;
+using detail::json_number;
 
-/// The values of `metric` over `sample`'s episodes (episodes without it are left out).
-std::vector<double> values_of(const Sample& sample, const std::string& metric) {
-  std::vector<double> out;
-  for (const auto& e : sample.episodes) {
-    const auto it = e.metrics.find(metric);
-    if (it != e.metrics.end() && !std::isnan(it->second)) out.push_back(it->second);
-  }
-  return out;
-}
 
 /// The mean of `metric` over `sample`; InputError when no episode has it.
 double mean_of(const Sample& sample, const std::string& metric) {
-  const auto values = values_of(sample, metric);
+  const auto values = values_of(sample.episodes, metric);
   if (values.empty()) {
     throw InputError(fmt::format("the run '{}' has no value of {}", sample.label, metric), "RUN",
                      "a child-robot run whose episodes.jsonl records hold the coded label shares");
@@ -67,7 +61,7 @@ RobotRow row_of(const Sample& sample) {
   return row;
 }
 
-std::string number(double v, int decimals = 3) {
+std::string decimal_text(double v, int decimals = 3) {
   return std::isfinite(v) ? fmt::format("{:.{}f}", v, decimals) : std::string("–");
 }
 
@@ -77,16 +71,15 @@ ValidityGate make_gate(std::string robot, std::string name, double value, double
   ValidityGate g{std::move(robot), std::move(name), value, bound, upper, false, {}};
   g.passed = std::isfinite(value) && (upper ? value <= bound + 1e-12 : value > bound);
   const auto relation = upper ? "≤" : ">";
-  g.verdict = fmt::format("{} = {} (must be {} {}: {})", g.name, number(value, decimals), relation,
-                          number(bound, decimals), bound_text);
+  g.verdict = fmt::format("{} = {} (must be {} {}: {})", g.name, decimal_text(value, decimals), relation,
+                          decimal_text(bound, decimals), bound_text);
   if (!g.passed && std::isfinite(value)) {
-    g.verdict += fmt::format("; misses by {}", number(std::abs(value - bound), decimals));
+    g.verdict += fmt::format("; misses by {}", decimal_text(std::abs(value - bound), decimals));
   }
   if (!std::isfinite(value)) g.verdict += "; not measured (the runs could not be paired by seed)";
   return g;
 }
 
-nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 }  // namespace
 
@@ -123,11 +116,13 @@ ValidityReport evaluate_panel(const ValidityPanel& panel, const ValidityBounds& 
     report.gates.push_back(make_gate(row.robot, "cooperative share", share_of(row, "cooperative"),
                                      bounds.max_cooperative, true, "a robot that ignores the child"));
     report.gates.push_back(make_gate(row.robot, "associative share", share_of(row, "associative"), associative_bound,
-                                     true, fmt::format("asocial's {} + {}", number(share_of(asocial, "associative")),
-                                                       number(bounds.associative_margin, 2))));
+                                     true,
+                                     fmt::format("asocial's {} + {}", decimal_text(share_of(asocial, "associative")),
+                                                 decimal_text(bounds.associative_margin, 2))));
     report.gates.push_back(make_gate(row.robot, "mean duration (min)", row.duration_s / 60.0, duration_bound_min, true,
-                                     fmt::format("asocial's {} min + {} min", number(asocial.duration_s / 60.0, 2),
-                                                 number(bounds.duration_margin_s / 60.0, 1)),
+                                     fmt::format("asocial's {} min + {} min",
+                                                 decimal_text(asocial.duration_s / 60.0, 2),
+                                                 decimal_text(bounds.duration_margin_s / 60.0, 1)),
                                      2));
   }
 
@@ -183,8 +178,8 @@ std::string validity_table(const ValidityReport& report) {
   out += fmt::format("\nsocial − yoked, paired by seed (the same children), {:g} % bootstrap CIs\n",
                      report.bounds.confidence * 100);
   for (const auto& row : report.paired) {
-    out += fmt::format("  {:<44} {:>9} [{}, {}]  ({} pairs)\n", row.metric, number(row.difference, 4),
-                       number(row.ci.low, 4), number(row.ci.high, 4), row.pairs);
+    out += fmt::format("  {:<44} {:>9} [{}, {}]  ({} pairs)\n", row.metric, decimal_text(row.difference, 4),
+                       decimal_text(row.ci.low, 4), decimal_text(row.ci.high, 4), row.pairs);
   }
   out += fmt::format("\n{} of {} gates failed\n", report.failures(), report.gates.size());
   return out;
@@ -195,18 +190,20 @@ nlohmann::json validity_json(const ValidityReport& report) {
   nlohmann::json robots = nlohmann::json::array();
   for (const auto& row : report.robots) {
     nlohmann::json shares = nlohmann::json::object();
-    for (std::size_t i = 0; i < labels.size(); ++i) shares[labels[i]] = num(row.shares[i]);
-    robots.push_back({{"robot", row.robot}, {"n", row.n}, {"duration_s", num(row.duration_s)}, {"shares", shares}});
+    for (std::size_t i = 0; i < labels.size(); ++i) shares[labels[i]] = json_number(row.shares[i]);
+    robots.push_back(
+        {{"robot", row.robot}, {"n", row.n}, {"duration_s", json_number(row.duration_s)}, {"shares", shares}});
   }
   nlohmann::json gates = nlohmann::json::array();
   for (const auto& g : report.gates) {
-    gates.push_back({{"robot", g.robot}, {"gate", g.name}, {"value", num(g.value)}, {"bound", num(g.bound)},
-                     {"relation", g.upper ? "<=" : ">"}, {"passed", g.passed}, {"verdict", g.verdict}});
+    gates.push_back({{"robot", g.robot}, {"gate", g.name}, {"value", json_number(g.value)},
+                     {"bound", json_number(g.bound)}, {"relation", g.upper ? "<=" : ">"}, {"passed", g.passed},
+                     {"verdict", g.verdict}});
   }
   nlohmann::json paired = nlohmann::json::array();
   for (const auto& row : report.paired) {
-    paired.push_back({{"metric", row.metric}, {"pairs", row.pairs}, {"difference", num(row.difference)},
-                      {"ci", {num(row.ci.low), num(row.ci.high)}}});
+    paired.push_back({{"metric", row.metric}, {"pairs", row.pairs}, {"difference", json_number(row.difference)},
+                      {"ci", {json_number(row.ci.low), json_number(row.ci.high)}}});
   }
   return {{"robots", robots},
           {"gates", gates},

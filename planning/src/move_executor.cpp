@@ -18,8 +18,6 @@ constexpr double kNanosecondsPerSecond = 1e9;
 
 std::int64_t to_ns(double seconds) { return std::llround(seconds * kNanosecondsPerSecond); }
 
-bool finite(const Vec2& v) { return std::isfinite(v.x()) && std::isfinite(v.y()); }
-
 std::string item_names(const std::vector<Obstacle>& footprints) {
   std::string names;
   for (const auto& footprint : footprints) names += (names.empty() ? "" : ", ") + footprint.name;
@@ -109,7 +107,7 @@ MoveExecutor::MoveExecutor(std::shared_ptr<const MotionPlanner> planner, MoveExe
   }
   if (config_.arm_reach) {
     const ArmReach& reach = *config_.arm_reach;
-    if (!finite(reach.shoulder_xy) || !std::isfinite(reach.reach) || !std::isfinite(reach.shoulder_height) ||
+    if (!reach.shoulder_xy.allFinite() || !std::isfinite(reach.reach) || !std::isfinite(reach.shoulder_height) ||
         reach.reach <= 0.0) {
       throw InputError("arm reach must be finite with a positive reach", "arm_reach",
                        "finite shoulder x, y, height (m) and reach > 0 m");
@@ -122,7 +120,7 @@ void MoveExecutor::start(const MoveGoal& goal, const MoveWorld& world, Rng& rng)
     throw InputError("the world lacks its item_centre or footprints callback", "world",
                      "item_centre and footprints set");
   }
-  if (!finite(goal.target)) {
+  if (!goal.target.allFinite()) {
     throw InputError(fmt::format("target ({}, {}) of '{}' is not finite", goal.target.x(), goal.target.y(),
                                  goal.item),
                      "target", "finite x, y in metres (sandtray frame)");
@@ -130,7 +128,7 @@ void MoveExecutor::start(const MoveGoal& goal, const MoveWorld& world, Rng& rng)
   const std::optional<Vec2> centre = world.item_centre(goal.item);
   std::vector<Obstacle> footprints = world.footprints();
   if (!centre) throw InputError(fmt::format("unknown item '{}'", goal.item), "item", item_names(footprints));
-  if (!finite(*centre)) {
+  if (!centre->allFinite()) {
     throw InputError(fmt::format("centre of '{}' is not finite", goal.item), "item", "an item with a finite pose");
   }
   const bool held = world.held_by_child && world.held_by_child(goal.item);
@@ -252,7 +250,7 @@ void MoveExecutor::cancel() {
 }
 
 void MoveExecutor::observe_release(const Vec2& item_centre) {
-  if (!finite(item_centre)) {
+  if (!item_centre.allFinite()) {
     throw InputError("released item centre is not finite", "item_centre", "finite x, y in metres");
   }
   if (current_.status == MoveStatus::Idle || current_.status == MoveStatus::Running) return;

@@ -16,8 +16,6 @@ namespace freeplay::planning {
 
 namespace {
 
-bool finite(const Vec2& v) { return std::isfinite(v.x()) && std::isfinite(v.y()); }
-
 bool on_screen(const Vec2& p) {
   return p.x() >= 0.0 && p.x() <= OccupancyGrid::kWidthM && p.y() <= 0.0 && p.y() >= -OccupancyGrid::kHeightM;
 }
@@ -78,11 +76,12 @@ std::unique_ptr<MotionPlanner> make_planner(const PlannerSettings& settings) {
 }
 
 void validate_request(const PlanRequest& request) {
-  if (!finite(request.start)) {
+  const auto finite_vertex = [](const Vec2& p) { return p.allFinite(); };
+  if (!request.start.allFinite()) {
     throw InputError(fmt::format("start ({}, {}) is not finite", request.start.x(), request.start.y()), "start",
                      "finite x, y in metres (sandtray frame)");
   }
-  if (!finite(request.goal)) {
+  if (!request.goal.allFinite()) {
     throw InputError(fmt::format("goal ({}, {}) is not finite", request.goal.x(), request.goal.y()), "goal",
                      "finite x, y in metres (sandtray frame)");
   }
@@ -92,7 +91,7 @@ void validate_request(const PlanRequest& request) {
   }
   for (std::size_t i = 0; i < request.obstacles.size(); ++i) {
     const auto& footprint = request.obstacles[i].footprint;
-    const bool ok = footprint.size() >= 3 && std::all_of(footprint.begin(), footprint.end(), finite);
+    const bool ok = footprint.size() >= 3 && std::all_of(footprint.begin(), footprint.end(), finite_vertex);
     if (!ok) {
       throw InputError(fmt::format("footprint of '{}' needs at least 3 finite vertices", request.obstacles[i].name),
                        fmt::format("obstacles[{}].footprint", i), "polygon of >= 3 finite vertices");
@@ -100,7 +99,7 @@ void validate_request(const PlanRequest& request) {
   }
   if (request.moved_footprint) {
     const auto& footprint = *request.moved_footprint;
-    if (footprint.size() < 3 || !std::all_of(footprint.begin(), footprint.end(), finite)) {
+    if (footprint.size() < 3 || !std::all_of(footprint.begin(), footprint.end(), finite_vertex)) {
       throw InputError("moved footprint needs at least 3 finite vertices", "moved_footprint",
                        "polygon of >= 3 finite vertices");
     }

@@ -116,8 +116,6 @@ struct EntryProgress {
   bool done = false;
 };
 
-}  // namespace
-
 /// `scripted`: replays a timed action file, like a Wizard-of-Oz operator with a script.
 class ScriptedPolicy final : public PlayPolicy {
  public:
@@ -220,6 +218,8 @@ class ScriptedPolicy final : public PlayPolicy {
   std::vector<TimedAction> script_;
   std::vector<EntryProgress> progress_;
 };
+
+}  // namespace
 
 FREEPLAY_REGISTER_POLICY(ScriptedPolicy, "scripted", "replays a timed action file (a Wizard-of-Oz script)");
 

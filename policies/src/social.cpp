@@ -45,8 +45,6 @@ struct ObservedMove {
   Vec2 to;
 };
 
-}  // namespace
-
 /// `social`: our responsive policy — social gaze, joint attention, contingent reactions (joins, imitates,
 /// complements, praises), turn-taking, ideas when the child is idle, encouragement when it disengages; it never
 /// takes an item a child is holding.
@@ -249,6 +247,8 @@ class SocialPolicy final : public PlayPolicy {
   double last_t_ = 0.0;
   std::string looking_at_;
 };
+
+}  // namespace
 
 FREEPLAY_REGISTER_POLICY(SocialPolicy, "social",
                          "responsive: social gaze, joint attention, joins and praises, turn-taking, ideas");

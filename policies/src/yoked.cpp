@@ -154,6 +154,8 @@ std::vector<std::pair<double, Action>> read_robot_actions(const std::filesystem:
   return actions;
 }
 
+namespace {
+
 /// `yoked`: replays the robot actions of episode k of another run against the child of episode k.
 class YokedPolicy final : public PlayPolicy {
  public:
@@ -248,6 +250,8 @@ class YokedPolicy final : public PlayPolicy {
   std::vector<std::pair<double, Action>> actions_;  // free-play time → action, in log order
   std::size_t next_ = 0;
 };
+
+}  // namespace
 
 FREEPLAY_REGISTER_POLICY(YokedPolicy, "yoked",
                          "replays another run's robot actions, each episode those of another child (yoked control)");

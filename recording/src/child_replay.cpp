@@ -21,8 +21,6 @@ namespace freeplay::recording {
 
 namespace {
 
-constexpr double kTickS = 0.1;  // the episode's 10 Hz free-play tick
-
 // The inverse of the episode's event vocabulary (agents/perception.hpp), with an error naming the field.
 template <class E>
 E parse_name(const std::optional<E>& value, const std::string& name, const char* what) {
@@ -126,7 +124,7 @@ RecordedChildren read_recorded_children(const std::filesystem::path& session) {
   if (recorded_condition(scenario) == agents::Condition::ChildChild) out.seats.push_back("yellow");
 
   const double t0 = *freeplay_start;
-  const auto tick_of = [&](double t) { return std::lround((t - t0) / kTickS); };
+  const auto tick_of = [&](double t) { return std::lround((t - t0) / kPublishTickS); };
   // Snapshots are stamped after the tick's step: the state after free-play tick k is about t0 + (k + 1) × 0.1.
   const long first_tick = publication_tick(t0);
   std::map<long, std::map<int, Vec2>> touches_after;
@@ -136,7 +134,7 @@ RecordedChildren read_recorded_children(const std::filesystem::path& session) {
   std::map<std::pair<std::string, long>, std::vector<const Event*>> events_at;
   for (const auto& e : child_events) events_at[{e.source.substr(6), tick_of(e.t)}].push_back(&e);
 
-  const long ticks = std::lround(*duration / kTickS);
+  const long ticks = std::lround(*duration / kPublishTickS);
   for (const auto& seat : out.seats) {
     std::array<Finger, agents::kFingersPerChild + 1> fingers{};
     const int offset = finger_offset(seat);

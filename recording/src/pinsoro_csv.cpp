@@ -5,12 +5,12 @@
 #include <array>
 #include <cmath>
 
+#include "freeplay/recording/publishers.hpp"
+
 namespace freeplay::recording {
 
 namespace {
 
-constexpr double kFrameS = 1.0 / 30.0;
-constexpr int kFramesPerTick = 3;
 // The dataset's table-centre frame `sandtray_centre`: the sandtray origin sits at (−0.3, +0.169, 0) from it.
 const Eigen::Vector3d kSandtrayInCentre(-0.3, 0.169, 0.0);
 constexpr std::array<const char*, 18> kActionUnits = {"01", "02", "04", "05", "06", "07", "09", "10", "12",
@@ -114,8 +114,8 @@ void PinsoroCsv::observe(const runner::EpisodeSnapshot& s, const std::array<std:
     out.gaze = direction.norm() > 1e-9 ? direction.normalized() : Eigen::Vector3d::UnitX();
   }
   // The frames since the previous tick show this tick's state.
-  for (int k = kFramesPerTick - 1; k >= 0; --k) {
-    row.t = s.freeplay_t - k * kFrameS;
+  for (int k = kVideoFramesPerTick - 1; k >= 0; --k) {
+    row.t = s.freeplay_t - k * kVideoFrameS;
     if (row.t < -1e-9) continue;
     rows_.push_back(row);
   }

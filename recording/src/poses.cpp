@@ -4,14 +4,13 @@
 
 #include "freeplay/core/error.hpp"
 #include "freeplay/recording/camera_topics.hpp"
+#include "freeplay/recording/publishers.hpp"
 #include "freeplay/recording/ros_messages.hpp"
 
 namespace freeplay::recording {
 
 namespace {
 
-constexpr double kFrameS = 1.0 / 30.0;
-constexpr int kFramesPerTick = 3;
 constexpr std::array<const char*, 3> kPoseCameras = {"camera_purple", "camera_yellow", "env_camera"};
 
 template <std::size_t N>
@@ -103,9 +102,9 @@ std::array<std::optional<ProjectedKeypoints>, 2> PoseRecorder::observe(const run
       }
     }
     const std::string frame = fmt::format("\"poses\":{{{}}},\"faces\":{{{}}},\"hands\":{{{}}}}}", people, faces, hands);
-    for (int k = kFramesPerTick - 1; k >= 0; --k) {  // the frames since the previous tick show this tick's pose
-      const double t = s.t - k * kFrameS;
-      if (s.freeplay_t - k * kFrameS < -1e-9) continue;
+    for (int k = kVideoFramesPerTick - 1; k >= 0; --k) {  // the frames since the previous tick show this tick's pose
+      const double t = s.t - k * kVideoFrameS;
+      if (s.freeplay_t - k * kVideoFrameS < -1e-9) continue;
       camera.out << (camera.first ? "" : ",") << fmt::format("{{\"ts\":{:.6f},", ros_time(t).toSec()) << frame;
       camera.first = false;
     }

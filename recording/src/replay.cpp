@@ -24,8 +24,6 @@ namespace freeplay::recording {
 
 namespace {
 
-constexpr double kTickS = 0.1;  // the episode loop's 10 Hz tick
-
 /// An item's position on the game's /tf at a tick; InputError when the recording lacks it.
 Vec2 item_position(const SessionRecording& rec, double tick, const std::string& item) {
   const auto it = rec.item_positions.find(publication_tick(tick));
@@ -62,7 +60,7 @@ double replay_drawing_coverage(const SessionRecording& rec, double freeplay_star
   const std::vector<std::uint8_t>* map = nullptr;
   const std::vector<std::uint8_t>* last = nullptr;
   for (const auto& [t, png] : rec.backgrounds) {
-    if (t <= freeplay_start + 1e-9 || t > freeplay_end + 0.5 * kTickS) continue;
+    if (t <= freeplay_start + 1e-9 || t > freeplay_end + 0.5 * kPublishTickS) continue;
     if (map == nullptr) map = &png;
     last = &png;
   }
@@ -110,9 +108,9 @@ void feed_events(const SessionRecording& rec, double freeplay_start, double dura
   if (std::isnan(duration)) {
     ticks = 0;
   } else if (ended_by == "quit") {
-    ticks = std::lround(duration / kTickS);
+    ticks = std::lround(duration / kPublishTickS);
   } else {
-    while (static_cast<double>(ticks) * kTickS < duration) ++ticks;
+    while (static_cast<double>(ticks) * kPublishTickS < duration) ++ticks;
   }
   std::size_t next = 0;
   auto feed_until = [&](auto before) {
@@ -122,7 +120,7 @@ void feed_events(const SessionRecording& rec, double freeplay_start, double dura
   };
   feed_until([&](double tick) { return tick <= freeplay_start + 1e-9; });
   for (long k = 0; k < ticks; ++k) {
-    const double tick_end = freeplay_start + static_cast<double>(k + 1) * kTickS + 0.5 * kTickS;
+    const double tick_end = freeplay_start + static_cast<double>(k + 1) * kPublishTickS + 0.5 * kPublishTickS;
     feed_until([&](double tick) { return tick < tick_end; });
     metrics.measure_gaze();
   }

@@ -8,11 +8,12 @@
 
 #include "freeplay/agents/coder.hpp"
 #include "freeplay/core/error.hpp"
+#include "sim_world.hpp"
 
 namespace freeplay::runner {
 namespace {
 
-constexpr double kTickS = 0.1;
+using detail::kTickS;  // the game's 10 Hz tick (sim_world.hpp)
 
 /// One player's visible state as the log has it so far.
 struct PlayerState {

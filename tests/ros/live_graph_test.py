@@ -286,13 +286,13 @@ def case_rate(g):
 def case_robot(g):
     """`freeplay serve --robot external` + `freeplay robot --policy asocial`: the robot moves items by fake touches,
     and the served episode's metrics count the robot's moves as an in-process episode does."""
-    serve = g.serve("--robot", "external", "--set", "protocol.freeplay_cap_s=45")
+    serve = g.serve("--robot", "external", "--set", "protocol.freeplay_cap_s=25")
     rospy = rospy_client()
     from std_msgs.msg import String
     releases = []
     rospy.Subscriber("sandtray/interaction_events", String, lambda m: releases.append(m.data))
     start = item_positions(rospy, timeout=30)
-    robot = g.spawn("robot", [FREEPLAY, "robot", "--policy", "asocial", "--duration", "40", "--seed", "3"])
+    robot = g.spawn("robot", [FREEPLAY, "robot", "--policy", "asocial", "--duration", "20", "--seed", "3"])
     # Malformed input for the robot node: a non-finite item transform (logged and dropped, never applied).
     from tf2_msgs.msg import TFMessage
     from geometry_msgs.msg import TransformStamped
@@ -309,7 +309,7 @@ def case_robot(g):
     try:
         robot.wait(timeout=80)
     except subprocess.TimeoutExpired:
-        raise AssertionError("freeplay robot did not stop after --duration 40")
+        raise AssertionError("freeplay robot did not stop after --duration 20")
     check(robot.returncode == 0, f"freeplay robot failed:\n{g.log('robot')}")
     stats = [line for line in g.log("robot").splitlines() if line.startswith("{")]
     print("robot:", stats)
@@ -325,7 +325,7 @@ def case_robot(g):
     try:
         serve.wait(timeout=60)
     except subprocess.TimeoutExpired:
-        raise AssertionError("freeplay serve did not end after its 45 s of free play")
+        raise AssertionError("freeplay serve did not end after its 25 s of free play")
     check(serve.returncode == 0, f"freeplay serve failed:\n{g.log('serve')}")
     import json
     summary = json.loads([line for line in g.log("serve").splitlines() if line.startswith("{")][-1])

@@ -14,6 +14,10 @@ namespace freeplay::recording {
 
 /// Length of the game's tick (s): the simulation's state changes every 0.1 s.
 inline constexpr double kPublishTickS = 0.1;
+/// Length of one frame of PInSoRo's 30 Hz videos, CSV rows and pose frames (s).
+inline constexpr double kVideoFrameS = 1.0 / 30.0;
+/// The 30 Hz frames of one game tick: the three frames since the previous tick show that tick's state.
+inline constexpr int kVideoFramesPerTick = 3;
 /// The latest a publisher sends the state of a tick after it (s): phase + jitter stay below half a tick.
 inline constexpr double kMaxPublishDelayS = 0.042;
 
