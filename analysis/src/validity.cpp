@@ -21,7 +21,6 @@ using detail::kNaN;
 using detail::values_of;
 using detail::json_number;
 
-
 /// The mean of `metric` over `sample`; InputError when no episode has it.
 double mean_of(const Sample& sample, const std::string& metric) {
   const auto values = values_of(sample.episodes, metric);
