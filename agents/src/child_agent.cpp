@@ -103,6 +103,7 @@ ChildActions ChildAgent::step(double t, double dt, const ChildPerception& seen) 
   if (motor_.kind == MotorKind::None && !quit_ && t >= next_action_t_) plan_action(t, seen, out);
   run_motor(t, out);
   update_gaze(t, seen, out);
+  watched_s_ = motor_.kind != MotorKind::None ? 0.0 : watched_s_ + (eyes_on_partner_play_ ? dt : 0.0);
   answer_partner(t, out);
   update_speech(t, dt, out);
   out.gaze = gaze_;
@@ -316,6 +317,7 @@ void ChildAgent::maybe_quit(double t, double dt) {
 void ChildAgent::advance_labels(double t) {
   if (quit_) return;
   sustain_joint_play(t);
+  start_onlooking_when_watching(t);
   for (const Axis axis : kAxes) {
     const auto a = static_cast<std::size_t>(axis);
     if (t >= next_switch_[a]) switch_label(axis, draw_next_label(axis), t);
@@ -653,6 +655,7 @@ void ChildAgent::update_gaze(double t, const ChildPerception& seen, ChildActions
   const bool robot = seen.partner.is_robot;
   const GazeKind face = robot ? GazeKind::Robot : GazeKind::PartnerFace;
   gaze_ = GazeTarget{};
+  eyes_on_partner_play_ = false;
   if (quit_) {
     gaze_.kind = rng_.bernoulli(0.5) ? GazeKind::Experimenter : GazeKind::Away;
     return;
@@ -678,12 +681,14 @@ void ChildAgent::update_gaze(double t, const ChildPerception& seen, ChildActions
   const bool onlooker = labels_.social == SocialEngagement::Onlooker;
   if (onlooker && seen.partner.touch_count == 0 && t - partner_last_t_ < params_->partnership.watch_window_s) {
     // An onlooker keeps its eyes on where the partner plays between the partner's touches.
+    eyes_on_partner_play_ = true;
     gaze_.point = partner_last_point_;
     gaze_.item = partner_last_item_;
     gaze_.kind = gaze_.item >= 0 ? GazeKind::Item : GazeKind::Tray;
     return;
   }
   if ((onlooker || rng_.bernoulli(0.3)) && seen.partner.touch_count > 0) {
+    eyes_on_partner_play_ = true;
     gaze_.kind = GazeKind::Tray;
     gaze_.point = seen.partner.touches[0].point;
     gaze_.item = seen.partner.touches[0].item;
@@ -693,6 +698,7 @@ void ChildAgent::update_gaze(double t, const ChildPerception& seen, ChildActions
   if (labels_.task == TaskEngagement::NoPlay) {
     // A child out of the game may watch the partner play; otherwise it looks away half the time.
     if (t - partner_last_t_ < params_->partnership.watch_window_s && rng_.bernoulli(e.noplay_watch_share)) {
+      eyes_on_partner_play_ = true;
       gaze_.point = partner_last_point_;
       gaze_.item = partner_last_item_;
       gaze_.kind = gaze_.item >= 0 ? GazeKind::Item : GazeKind::Tray;
@@ -863,6 +869,21 @@ void ChildAgent::sustain_joint_play(double t) {
       switch_label(Axis::SocialEngagement, static_cast<std::size_t>(SocialEngagement::Solitary), t);
     }
   }
+}
+
+void ChildAgent::start_onlooking_when_watching(double t) {
+  // What the child does is its state: a child that has stopped its own play and watched the partner's play for a
+  // prolonged period is onlooking ("looking at the other for a prolonged period, without engaging"), and what it
+  // does next follows the children's exits from onlooking, joining the watched play among them (entry by watching
+  // first: Corsaro 1979; Putallaz & Gottman 1981). The onlooking began when the watching did.
+  const auto s = static_cast<std::size_t>(Axis::SocialEngagement);
+  const bool own_play_or_alone =
+      labels_.social == SocialEngagement::Solitary || labels_.social == SocialEngagement::Parallel;
+  if (!own_play_or_alone) watched_s_ = 0.0;  // only watching instead of its own play counts
+  if (watched_s_ < params_->partnership.onlooking_after_s) return;
+  switch_label(Axis::SocialEngagement, static_cast<std::size_t>(SocialEngagement::Onlooker),
+               std::max(bout_start_[s], t - watched_s_));
+  watched_s_ = 0.0;
 }
 
 void ChildAgent::finish(double t) {

@@ -18,7 +18,7 @@ namespace {
 constexpr double kDwellBand = 3.0;
 
 /// Where the loss of a checked row turns steep, in units of its band's half-width (fit_loss).
-constexpr double kSteepFrom = 0.8;
+constexpr double kSteepFrom = 0.6;
 
 /// How a fitted parameter is searched: on its own scale, within bounds.
 enum class Scale : std::uint8_t {
@@ -88,6 +88,11 @@ std::vector<Fitted> fitted_parameters() {
   FREEPLAY_FITTED(partnership.reciprocity_window_s, Log, 3.0, 120.0);
   FREEPLAY_FITTED(partnership.join_probability, Logit, 0.01, 1.0);
   FREEPLAY_FITTED(partnership.expectation_exponent, Log, 0.1, 4.0);
+  {
+    // Watching long enough to be onlooking: within the dwell band of the coded onlooker bout (§4).
+    const double bout = bout_median_target_s(Axis::SocialEngagement, static_cast<std::size_t>(SocialEngagement::Onlooker));
+    FREEPLAY_FITTED(partnership.onlooking_after_s, Log, bout / kDwellBand, bout * kDwellBand);
+  }
   FREEPLAY_FITTED(partnership.answer_probability[2], Logit, 0.01, 0.99);
   FREEPLAY_FITTED(partnership.answer_probability[3], Logit, 0.01, 0.99);
   FREEPLAY_FITTED(partnership.answer_probability[4], Logit, 0.01, 0.99);

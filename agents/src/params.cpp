@@ -139,6 +139,7 @@ void PartnershipParams::visit(Archive& a) {
   a.required("expectation_exponent", expectation_exponent, Schema::number(0, 20));
   a.required("bid_floor", bid_floor, Schema::number(0, 1));
   a.required("watch_window_s", watch_window_s, Schema::number(0.5, 600));
+  a.required("onlooking_after_s", onlooking_after_s, Schema::number(0.5, 600));
   a.required("answer_probability", answer_probability, per_label(Axis::SocialEngagement, 0.0, 1.0));
 }
 

@@ -265,9 +265,11 @@ TEST(ChildAgent, LeavesAloneTheItemThePartnerIsPlayingWith) {
 TEST(ChildAgent, BidsLeftUnansweredCanFrustrate) {
   // "Frustrated: ... because of a perceived lack of fairness or attention from their peer" (the coding scheme): the
   // test partner never answers; with a chance of frustration per unanswered bid the child protests, without it not.
+  // The attitude axis's own entries into frustration are switched off, so unanswered bids are the only cause.
   const auto protests = [](double probability) {
     ChildModelParams p = params();
     p.reactions.unanswered_frustration_probability = probability;
+    p.axis(Axis::SocialAttitude).bias[static_cast<std::size_t>(SocialAttitude::Frustrated)] = -30.0;
     int total = 0;
     for (std::uint64_t seed = 0; seed < 20; ++seed) {
       ChildProfile profile;
@@ -359,4 +361,46 @@ TEST(Session, YoungerChildrenCooperateLess) {
   const double young = cooperative_share(4);
   const double old = cooperative_share(8);
   EXPECT_LT(young + 0.05, old) << "age 4: " << young << ", age 8: " << old;
+}
+
+TEST(Session, WatchingThePartnersPlayIsOnlookingAndLeadsIntoIt) {
+  // "Onlooker: looking at the other for a prolonged period, without engaging" (the scheme): a child that stops its
+  // own play to watch its partner's is onlooking, and it leaves onlooking along the children's exits from it,
+  // joining the watched play among them (entry by watching first: Corsaro 1979; Putallaz & Gottman 1981).
+  struct Counts {
+    int onlooking_from_own_play = 0;  // onlooker bouts that follow a solitary or parallel bout
+    int joining_after_onlooking = 0;  // associative or cooperative bouts that follow an onlooker bout
+  };
+  const auto count = [](double onlooking_after_s) {
+    ChildModelParams p = params();
+    p.partnership.onlooking_after_s = onlooking_after_s;
+    Counts c;
+    for (std::uint64_t seed = 0; seed < 30; ++seed) {
+      const SessionResult s = simulate_session(p, SessionConfig{}, 2000 + seed);
+      for (const ChildOutcome* child : {&s.purple, &*s.yellow}) {
+        std::vector<std::uint8_t> social;
+        for (const LabelInterval& b : child->internal) {
+          if (b.axis == Axis::SocialEngagement) social.push_back(b.label);
+        }
+        for (std::size_t i = 1; i < social.size(); ++i) {
+          const auto from = static_cast<SocialEngagement>(social[i - 1]);
+          const auto to = static_cast<SocialEngagement>(social[i]);
+          if (to == SocialEngagement::Onlooker &&
+              (from == SocialEngagement::Solitary || from == SocialEngagement::Parallel)) {
+            ++c.onlooking_from_own_play;
+          }
+          if (from == SocialEngagement::Onlooker &&
+              (to == SocialEngagement::Associative || to == SocialEngagement::Cooperative)) {
+            ++c.joining_after_onlooking;
+          }
+        }
+      }
+    }
+    return c;
+  };
+  const Counts never = count(1e5);
+  const Counts shipped = count(params().partnership.onlooking_after_s);
+  EXPECT_GT(shipped.onlooking_from_own_play, never.onlooking_from_own_play + 100);
+  EXPECT_GT(shipped.joining_after_onlooking, never.joining_after_onlooking + 20)
+      << "never: " << never.joining_after_onlooking << ", shipped: " << shipped.joining_after_onlooking;
 }

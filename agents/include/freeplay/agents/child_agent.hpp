@@ -111,6 +111,8 @@ class ChildAgent {
   double bid_scale() const;
   double reciprocity_window() const;
   void sustain_joint_play(double t);
+  /// Makes a child that has watched the partner's play for `onlooking_after_s` without acting an onlooker.
+  void start_onlooking_when_watching(double t);
   /// Where joint play that lapsed for want of answers goes (the children's exits from it, never up).
   std::size_t lapse_destination(bool partner_playing);
   double reach_depth() const;
@@ -165,6 +167,8 @@ class ChildAgent {
   bool partner_last_was_stroke_ = false;
   double last_answered_t_ = -1e9;
   double partner_last_touch_t_ = -1e9;
+  bool eyes_on_partner_play_ = false;  // the current glance rests on the partner's play
+  double watched_s_ = 0.0;             // time spent watching the partner's play since my own last act
   struct PendingAnswer {
     bool active = false;
     double due = 0.0;

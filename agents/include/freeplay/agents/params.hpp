@@ -169,6 +169,7 @@ struct PartnershipParams {
   double expectation_exponent = 2.0;    ///< joint-play transition weights × contingency^exponent
   double bid_floor = 0.2;               ///< bid rates × (floor + (1 − floor) × contingency)
   double watch_window_s = 4.0;          ///< onlooking ends when the partner has not acted for this long (s)
+  double onlooking_after_s = 8.0;       ///< watching the partner's play this long without acting is onlooking (s)
 
   /// The keys of `partnership:` with their ranges (params.cpp).
   template <typename Archive>
