@@ -329,6 +329,12 @@ SocialEngagement PairCoder::candidate(double t, int who) const {
   const bool they_played = plays(t, 1 - who, (i_play ? 3.0 : 1.0) * params_.active_window_s) && !onlooking(t, 1 - who);
   if (onlooking(t, who)) return SocialEngagement::Onlooker;
   if (i_play) return they_played ? SocialEngagement::Parallel : SocialEngagement::Solitary;
+  // Neither child plays: the scheme has no label for it (Parten's stages "minus unoccupied"), so a coder leaves the
+  // child's social engagement as it was until one of them plays again: a pause of both is not solitary play.
+  if (!they_play) {
+    return static_cast<SocialEngagement>(
+        coded_[static_cast<std::size_t>(who)][static_cast<std::size_t>(Axis::SocialEngagement)].label);
+  }
   return SocialEngagement::Solitary;
 }
 

@@ -522,6 +522,27 @@ Vignette onlooker_joins_the_play() {
            never(kPurple, Solitary, 30, 90)}};
 }
 
+Vignette both_pause_their_parallel_play() {
+  return {"BothChildrenPauseTheirParallelPlay",
+          "both children arrange animals on their own sides, glancing at each other's play now and then; from 40 s "
+          "to 100 s neither touches the screen (both look around the room), then both go on as before; a coder "
+          "does not code the shared pause as solitary play",
+          sentences({scheme::kParallel, scheme::kNoUnoccupied}),
+          false, 140.0,
+          [](Script& s) {
+            arrange(s.purple(), {"lion", "zebra", "elephant"}, kPurpleArea, 1.0, 39.0);
+            arrange(s.yellow(), {"giraffe", "hippo", "crocodile"}, kSecondArea, 2.5, 39.0, 4.5);
+            s.purple().watch_partner(1.2).at({17.0, 31.0});
+            s.yellow().watch_partner(1.2).at({24.0, 35.0});
+            s.purple().look_away(5.0).every(6.0, 40.0, 100.0);
+            s.yellow().look_away(5.0).every(6.0, 41.0, 100.0);
+            arrange(s.purple(), {"lion", "zebra", "elephant"}, kPurpleArea, 101.0, 139.0);
+            arrange(s.yellow(), {"giraffe", "hippo", "crocodile"}, kSecondArea, 102.0, 139.0, 4.5);
+          },
+          {mostly(kPurple, Parallel, 10, 140), mostly(kYellow, Parallel, 10, 140), never(kPurple, Solitary, 40, 140),
+           never(kYellow, Solitary, 40, 140)}};
+}
+
 std::vector<Vignette> social_vignettes() {
   return {robot_says_wow_on_a_timer(),
           timetable_mover_robot(),
@@ -549,7 +570,8 @@ std::vector<Vignette> social_vignettes() {
           child_and_robot_discuss(),
           child_shares_with_robot(),
           peer_answers_in_words(),
-          onlooker_joins_the_play()};
+          onlooker_joins_the_play(),
+          both_pause_their_parallel_play()};
 }
 
 }  // namespace

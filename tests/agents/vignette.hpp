@@ -215,6 +215,10 @@ inline constexpr std::string_view kNotMe = "the partner's act near my item does 
 inline constexpr std::string_view kResponds =
     "associative: 'the child itself initiates or RESPONDS to interaction about the play' (issue 27's reading of "
     "Parten): answering in words a partner that talks about the play";
+/// Social engagement: the scheme has no label for a child that is not playing at all.
+inline constexpr std::string_view kNoUnoccupied =
+    "social engagement: Parten's play stages minus 'unoccupied' (the scheme's label set): a pause of both children "
+    "is not coded as a new kind of play";
 /// Social engagement: a returned glance is not play.
 inline constexpr std::string_view kGlance = "a glance that answers a comment is not associative play";
 /// Task engagement: goal oriented.
