@@ -6,11 +6,24 @@
 
 namespace freeplay::agents {
 
-ContingencyDetector::ContingencyDetector(const ContingencyParams& params) : params_(&params) {}
+ContingencyDetector::ContingencyDetector(const ContingencyParams& params)
+    : params_(&params),
+      prior_log_odds_(std::log(params.prior_link_probability / (1.0 - params.prior_link_probability))) {}
+
+ContingencyDetector::Decay ContingencyDetector::decay_over(double dt) const {
+  const ContingencyParams& p = *params_;
+  Decay d;
+  d.dt = dt;
+  d.keep = p.memory_s > 0.0 ? std::exp(-dt / p.memory_s) : 0.0;
+  d.interruptions = p.interruption_tau_s > 0.0 ? std::exp(-dt / p.interruption_tau_s) : 0.0;
+  d.recovery = p.habituation_recovery_s > 0.0 ? 1.0 - std::exp(-dt / p.habituation_recovery_s) : 1.0;
+  return d;
+}
 
 void ContingencyDetector::advance(double t, double dt) {
-  const ContingencyParams& p = *params_;
-  const double keep = p.memory_s > 0.0 ? std::exp(-dt / p.memory_s) : 0.0;
+  // The episode's tick is fixed, so the factors of the last step are those of this one (bit for bit).
+  if (!(decay_.dt == dt)) decay_ = decay_over(dt);
+  const double keep = decay_.keep;
   cached_.valid = false;
   for (Rates& r : rates_) {
     r.bids *= keep;
@@ -19,8 +32,8 @@ void ContingencyDetector::advance(double t, double dt) {
     r.probes *= keep;
     r.probe_hits *= keep;
   }
-  interruptions_ *= p.interruption_tau_s > 0.0 ? std::exp(-dt / p.interruption_tau_s) : 0.0;
-  salience_ += (1.0 - salience_) * (p.habituation_recovery_s > 0.0 ? 1.0 - std::exp(-dt / p.habituation_recovery_s) : 1.0);
+  interruptions_ *= decay_.interruptions;
+  salience_ += (1.0 - salience_) * decay_.recovery;
   int kept = 0;
   for (int i = 0; i < open_count_; ++i) {
     const OpenBid& bid = open_[static_cast<std::size_t>(i)];
@@ -258,8 +271,7 @@ double ContingencyDetector::causal_support_link() const {
                           log_beta(a + h + 1.0, r.bids + r.probes - a - h + 1.0);
     support += a / r.bids > h / r.probes ? log_bf : -std::fabs(log_bf);
   }
-  const double prior = params_->prior_link_probability;
-  const double log_odds = std::clamp(support + std::log(prior / (1.0 - prior)), -30.0, 30.0);
+  const double log_odds = std::clamp(support + prior_log_odds_, -30.0, 30.0);
   return 1.0 / (1.0 + std::exp(-log_odds));
 }
 
