@@ -156,6 +156,15 @@ class ContingencyDetector {
     double contingency = 0.0;
   };
   mutable Estimates cached_;
+  /// The base rate's prior of each kind of bid, 1 − exp(−rate × mean window), kept like the estimates: the
+  /// estimates and base_share() both read it every tick.
+  struct Priors {
+    bool valid = false;
+    std::array<double, kBidKinds> base_share{};
+  };
+  mutable Priors priors_;
+  /// The base rate's prior of `r` (one of rates_).
+  double prior_base_share(const Rates& r) const;
   /// link_probability() computed from the counts (causal support).
   double causal_support_link() const;
   /// Computes link_probability() and contingency() from the counts.
