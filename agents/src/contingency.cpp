@@ -6,12 +6,26 @@
 
 namespace freeplay::agents {
 
-ContingencyDetector::ContingencyDetector(const ContingencyParams& params) : params_(&params) {}
+ContingencyDetector::ContingencyDetector(const ContingencyParams& params)
+    : params_(&params),
+      prior_log_odds_(std::log(params.prior_link_probability / (1.0 - params.prior_link_probability))) {}
+
+ContingencyDetector::Decay ContingencyDetector::decay_over(double dt) const {
+  const ContingencyParams& p = *params_;
+  Decay d;
+  d.dt = dt;
+  d.keep = p.memory_s > 0.0 ? std::exp(-dt / p.memory_s) : 0.0;
+  d.interruptions = p.interruption_tau_s > 0.0 ? std::exp(-dt / p.interruption_tau_s) : 0.0;
+  d.recovery = p.habituation_recovery_s > 0.0 ? 1.0 - std::exp(-dt / p.habituation_recovery_s) : 1.0;
+  return d;
+}
 
 void ContingencyDetector::advance(double t, double dt) {
-  const ContingencyParams& p = *params_;
-  const double keep = p.memory_s > 0.0 ? std::exp(-dt / p.memory_s) : 0.0;
+  // The episode's tick is fixed, so the factors of the last step are those of this one (bit for bit).
+  if (!(decay_.dt == dt)) decay_ = decay_over(dt);
+  const double keep = decay_.keep;
   cached_.valid = false;
+  priors_.valid = false;
   for (Rates& r : rates_) {
     r.bids *= keep;
     r.answered *= keep;
@@ -19,8 +33,8 @@ void ContingencyDetector::advance(double t, double dt) {
     r.probes *= keep;
     r.probe_hits *= keep;
   }
-  interruptions_ *= p.interruption_tau_s > 0.0 ? std::exp(-dt / p.interruption_tau_s) : 0.0;
-  salience_ += (1.0 - salience_) * (p.habituation_recovery_s > 0.0 ? 1.0 - std::exp(-dt / p.habituation_recovery_s) : 1.0);
+  interruptions_ *= decay_.interruptions;
+  salience_ += (1.0 - salience_) * decay_.recovery;
   int kept = 0;
   for (int i = 0; i < open_count_; ++i) {
     const OpenBid& bid = open_[static_cast<std::size_t>(i)];
@@ -69,6 +83,7 @@ bool ContingencyDetector::open_of(BidKind kind) const {
 void ContingencyDetector::close(const OpenBid& bid) {
   Rates& r = rates_[static_cast<std::size_t>(bid.kind)];
   cached_.valid = false;
+  priors_.valid = false;
   r.bids += 1.0;
   r.window_s += bid.closes - bid.opened;
   if (bid.answered) {
@@ -165,6 +180,17 @@ double ContingencyDetector::on_interruption() {
 
 void ContingencyDetector::habituate() { salience_ *= 1.0 - params_->habituation_rate; }
 
+double ContingencyDetector::prior_base_share(const Rates& r) const {
+  if (!priors_.valid) {
+    const ContingencyParams& p = *params_;
+    for (std::size_t k = 0; k < kBidKinds; ++k) {
+      priors_.base_share[k] = 1.0 - std::exp(-p.prior_base_rate_per_min / 60.0 * mean_window(rates_[k]));
+    }
+    priors_.valid = true;
+  }
+  return priors_.base_share[static_cast<std::size_t>(&r - rates_.data())];
+}
+
 double ContingencyDetector::answered_share(const Rates& r) const {
   const ContingencyParams& p = *params_;
   return (r.answered + p.prior_bids * p.prior_answered_share) / (r.bids + p.prior_bids);
@@ -173,7 +199,7 @@ double ContingencyDetector::answered_share(const Rates& r) const {
 double ContingencyDetector::base_share(const Rates& r) const {
   const ContingencyParams& p = *params_;
   // The prior: the partner acting at `prior_base_rate_per_min` at random, worth `prior_free_time_s` of probing.
-  const double prior = 1.0 - std::exp(-p.prior_base_rate_per_min / 60.0 * mean_window(r));
+  const double prior = prior_base_share(r);
   const double prior_probes = p.prior_free_time_s / std::max(mean_window(r), 1e-3);
   return (r.probe_hits + prior_probes * prior) / (r.probes + prior_probes);
 }
@@ -201,9 +227,7 @@ double ContingencyDetector::base_share() const {
 double ContingencyDetector::shrunk(const Rates& r, double (*measure)(double p1, double p0)) const {
   const ContingencyParams& p = *params_;
   // What the priors alone say (a new partner gets the benefit of the doubt) …
-  const double window_s = mean_window(r);
-  const double prior_p0 = 1.0 - std::exp(-p.prior_base_rate_per_min / 60.0 * window_s);
-  const double prior = measure(p.prior_answered_share, prior_p0);
+  const double prior = measure(p.prior_answered_share, prior_base_share(r));
   if (r.bids <= 0.0 || r.probes <= 0.0) return prior;
   // … moved towards what the counts say, by as much evidence as the scarcer of the two counts holds.
   const double observed = measure(r.answered / r.bids, r.probe_hits / r.probes);
@@ -258,8 +282,7 @@ double ContingencyDetector::causal_support_link() const {
                           log_beta(a + h + 1.0, r.bids + r.probes - a - h + 1.0);
     support += a / r.bids > h / r.probes ? log_bf : -std::fabs(log_bf);
   }
-  const double prior = params_->prior_link_probability;
-  const double log_odds = std::clamp(support + std::log(prior / (1.0 - prior)), -30.0, 30.0);
+  const double log_odds = std::clamp(support + prior_log_odds_, -30.0, 30.0);
   return 1.0 / (1.0 + std::exp(-log_odds));
 }
 

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 
+#include <opencv2/core/hal/intrin.hpp>
+
 #include "freeplay/core/error.hpp"
 
 namespace freeplay::sim {
@@ -17,6 +19,7 @@ struct Segment {
   double length = 0.0;
   double length2 = 0.0;
   cv::Point2d u, n;  // unit direction and normal (zero for a dot)
+  double inv_ux = 0.0, inv_nx = 0.0;  // 1 / u.x and 1 / n.x (0 where that component is below 1e-12)
   bool end_cap = true;  // whether b's disc belongs to the rows' intervals (see StrokePainter::cover)
 
   Segment(const cv::Point2d& from, const cv::Point2d& to, bool with_end_cap)
@@ -26,70 +29,90 @@ struct Segment {
     if (length > 0.0) {
       u = ab / length;
       n = {-u.y, u.x};
+      if (std::abs(u.x) >= 1e-12) inv_ux = 1.0 / u.x;
+      if (std::abs(n.x) >= 1e-12) inv_nx = 1.0 / n.x;
     }
   }
 
-  // The x-intervals of row `y` within distance `outer` and within distance `inner` (< outer) of the segment (a
-  // capsule: convex, so the hull of what its two discs and its rectangle cut from the row). `has_outer` is false
-  // when the row misses the outer capsule, `has_inner` when it misses the inner one (or `inner` ≤ 0); both
-  // intervals share the row's offsets and the clip along the segment, which do not depend on the distance.
-  struct RowIntervals {
-    double lo, hi, in_lo, in_hi;
-    bool has_outer, has_inner;
+  // The x-intervals of a row within distance `outer` and within distance `inner` (< outer) of the segment (a
+  // capsule: convex, so the hull of what its two discs and its rectangle cut from the row); both intervals share
+  // the row's offsets and the clip along the segment, which do not depend on the distance.
+  // The ends need not be exact to the last bit: a pixel centre within 1e-9 px of an end is at distance ≈ inner
+  // (coverage 255 whether filled or measured), ≈ outer (coverage 0 whether in the row's run or not), or on the cut
+  // through b of a segment without its end disc (the next segment's disc at b gives it at least as much), so the
+  // clips multiply by the slope's reciprocal instead of dividing by it.
+  // Lane i is row y + i: [lo, hi] (none when lo > hi) and [in_lo, in_hi] (likewise). Kept as written by whole
+  // SIMD stores and read one double at a time (a copy of a freshly stored mixed struct would stall).
+  struct RowPair {
+    alignas(16) std::array<double, 2> lo, hi, in_lo, in_hi;
   };
-  RowIntervals row_intervals(double y, double outer, double inner) const {
+  // Rows `y` and `y` + 1 at once, two lanes of SIMD doubles (the same operations as one row at a time, lane by
+  // lane: a row beyond a disc or a clip is masked out instead of skipped).
+  void row_intervals(double y, double outer, double inner, RowPair& out) const {
+    using V = cv::v_float64x2;
     constexpr double kInf = std::numeric_limits<double>::infinity();
-    RowIntervals r{kInf, -kInf, kInf, -kInf, false, false};
+    const V inf = cv::v_setall_f64(kInf);
+    const V minus_inf = cv::v_setall_f64(-kInf);
+    const V zero = cv::v_setzero_f64();
+    const V ys(y, y + 1.0);
+    V lo = inf, hi = minus_inf, in_lo = inf, in_hi = minus_inf;
     const bool with_inner = inner > 0.0;
+    const V v_outer = cv::v_setall_f64(outer);
+    const V v_inner = cv::v_setall_f64(inner);
     for (const cv::Point2d* c : {&a, &b}) {
       if (c == &b && !end_cap) break;
-      const double dy = y - c->y;
-      const double ady = std::abs(dy);
-      if (ady > outer) continue;
-      const double h = std::sqrt(outer * outer - dy * dy);
-      r.lo = std::min(r.lo, c->x - h);
-      r.hi = std::max(r.hi, c->x + h);
-      if (!with_inner || ady > inner) continue;
-      const double h_in = std::sqrt(inner * inner - dy * dy);
-      r.in_lo = std::min(r.in_lo, c->x - h_in);
-      r.in_hi = std::max(r.in_hi, c->x + h_in);
+      const V dy = ys - cv::v_setall_f64(c->y);
+      const V ady = cv::v_abs(dy);
+      const V dy2 = dy * dy;
+      const V cx = cv::v_setall_f64(c->x);
+      const V in_disc = ady <= v_outer;
+      const V h = cv::v_sqrt(cv::v_max(cv::v_setall_f64(outer * outer) - dy2, zero));
+      lo = cv::v_select(in_disc, cv::v_min(lo, cx - h), lo);
+      hi = cv::v_select(in_disc, cv::v_max(hi, cx + h), hi);
+      if (!with_inner) continue;
+      const V in_core = ady <= v_inner;
+      const V h_in = cv::v_sqrt(cv::v_max(cv::v_setall_f64(inner * inner) - dy2, zero));
+      in_lo = cv::v_select(in_core, cv::v_min(in_lo, cx - h_in), in_lo);
+      in_hi = cv::v_select(in_core, cv::v_max(in_hi, cx + h_in), in_hi);
     }
     if (length > 0.0) {
       // Along the segment 0 ≤ (p − a)·u ≤ length and across it |(p − a)·n| ≤ t, each linear in x along the row.
-      double x0 = -kInf;
-      double x1 = kInf;
-      const double dy = y - a.y;
-      const auto clip = [](double& lo, double& hi, double slope, double offset, double low, double high) {
-        if (std::abs(slope) < 1e-12) {
-          if (offset < low || offset > high) lo = hi + 1.0;  // empty
+      // `inverse` is 1 / slope, or 0 for a slope below 1e-12 (the row's offset is then constant along it).
+      const auto clip = [](V& from, V& to, double inverse, const V& offset, double low, double high) {
+        const V v_low = cv::v_setall_f64(low);
+        const V v_high = cv::v_setall_f64(high);
+        if (inverse == 0.0) {
+          const V empty = (offset < v_low) | (offset > v_high);
+          from = cv::v_select(empty, to + cv::v_setall_f64(1.0), from);
           return;
         }
-        double e0 = (low - offset) / slope;
-        double e1 = (high - offset) / slope;
-        if (e0 > e1) std::swap(e0, e1);
-        lo = std::max(lo, e0);
-        hi = std::min(hi, e1);
+        const V e0 = (v_low - offset) * cv::v_setall_f64(inverse);
+        const V e1 = (v_high - offset) * cv::v_setall_f64(inverse);
+        from = cv::v_max(from, cv::v_min(e0, e1));
+        to = cv::v_min(to, cv::v_max(e0, e1));
       };
-      clip(x0, x1, u.x, -a.x * u.x + dy * u.y, 0.0, length);
-      const double across = -a.x * n.x + dy * n.y;
-      double in_x0 = x0;
-      double in_x1 = x1;
-      clip(x0, x1, n.x, across, -outer, outer);
-      if (x0 <= x1) {
-        r.lo = std::min(r.lo, x0);
-        r.hi = std::max(r.hi, x1);
-        if (with_inner) {
-          clip(in_x0, in_x1, n.x, across, -inner, inner);
-          if (in_x0 <= in_x1) {
-            r.in_lo = std::min(r.in_lo, in_x0);
-            r.in_hi = std::max(r.in_hi, in_x1);
-          }
-        }
+      V x0 = minus_inf;
+      V x1 = inf;
+      const V dy = ys - cv::v_setall_f64(a.y);
+      clip(x0, x1, inv_ux, cv::v_setall_f64(-a.x * u.x) + dy * cv::v_setall_f64(u.y), 0.0, length);
+      const V across = cv::v_setall_f64(-a.x * n.x) + dy * cv::v_setall_f64(n.y);
+      V in_x0 = x0;
+      V in_x1 = x1;
+      clip(x0, x1, inv_nx, across, -outer, outer);
+      const V met = x0 <= x1;
+      lo = cv::v_select(met, cv::v_min(lo, x0), lo);
+      hi = cv::v_select(met, cv::v_max(hi, x1), hi);
+      if (with_inner) {
+        clip(in_x0, in_x1, inv_nx, across, -inner, inner);
+        const V met_inner = met & (in_x0 <= in_x1);
+        in_lo = cv::v_select(met_inner, cv::v_min(in_lo, in_x0), in_lo);
+        in_hi = cv::v_select(met_inner, cv::v_max(in_hi, in_x1), in_hi);
       }
     }
-    r.has_outer = r.lo <= r.hi;
-    r.has_inner = r.in_lo <= r.in_hi;
-    return r;
+    cv::v_store_aligned(out.lo.data(), lo);
+    cv::v_store_aligned(out.hi.data(), hi);
+    cv::v_store_aligned(out.in_lo.data(), in_lo);
+    cv::v_store_aligned(out.in_hi.data(), in_hi);
   }
 
   // Distance from `p` to the segment.
@@ -147,24 +170,37 @@ void StrokePainter::cover(const std::vector<cv::Point2d>& path, double width_px,
     }
     const int y0 = std::max(0, static_cast<int>(std::ceil(top)));
     const int y1 = std::min(rows - 1, static_cast<int>(std::floor(bottom)));
+    Segment::RowPair pair;
     for (int y = y0; y <= y1; ++y) {
-      const auto spans = segment.row_intervals(y, outer, inner);
-      if (!spans.has_outer) continue;
-      RowRun run{k, y, std::max(0, ceil_to_int(spans.lo)), std::min(cols - 1, floor_to_int(spans.hi)), 0, 0};
-      if (run.x0 > run.x1) continue;
+      const auto lane = static_cast<std::size_t>((y - y0) % 2);
+      if (lane == 0) segment.row_intervals(y, outer, inner, pair);
+      const double lo = pair.lo[lane];
+      const double hi = pair.hi[lane];
+      if (!(lo <= hi)) continue;  // the row misses the capsule
+      const int x0 = std::max(0, ceil_to_int(lo));
+      const int x1 = std::min(cols - 1, floor_to_int(hi));
+      if (x0 > x1) continue;
       // Fully covered pixels [f0, f1] (none when f0 > f1); the rest of [x0, x1] is the anti-aliased rim.
-      run.f0 = run.x1 + 1;
-      run.f1 = run.x1;
-      if (spans.has_inner) {
-        run.f0 = std::max(run.x0, ceil_to_int(spans.in_lo));
-        run.f1 = std::min(run.x1, floor_to_int(spans.in_hi));
-        if (run.f0 > run.f1) run.f0 = run.x1 + 1, run.f1 = run.x1;
+      int f0 = x1 + 1;
+      int f1 = x1;
+      if (pair.in_lo[lane] <= pair.in_hi[lane]) {  // the row meets the fully covered core
+        f0 = std::max(x0, ceil_to_int(pair.in_lo[lane]));
+        f1 = std::min(x1, floor_to_int(pair.in_hi[lane]));
+        if (f0 > f1) f0 = x1 + 1, f1 = x1;
       }
       std::uint8_t* row = coverage_.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(cols);
-      if (run.f0 <= run.f1) std::fill(row + run.f0, row + run.f1 + 1, std::uint8_t{255});
-      span_lo_[static_cast<std::size_t>(y)] = std::min(span_lo_[static_cast<std::size_t>(y)], run.x0);
-      span_hi_[static_cast<std::size_t>(y)] = std::max(span_hi_[static_cast<std::size_t>(y)], run.x1);
-      runs_.push_back(run);
+      if (f0 <= f1) std::fill(row + f0, row + f1 + 1, std::uint8_t{255});
+      span_lo_[static_cast<std::size_t>(y)] = std::min(span_lo_[static_cast<std::size_t>(y)], x0);
+      span_hi_[static_cast<std::size_t>(y)] = std::max(span_hi_[static_cast<std::size_t>(y)], x1);
+      // Written field by field where it is kept: a run built aside and copied in would be read back with wider
+      // loads than it was stored with, which stalls the store forwarding once per row.
+      RowRun& run = runs_.emplace_back();
+      run.segment = k;
+      run.y = y;
+      run.x0 = x0;
+      run.x1 = x1;
+      run.f0 = f0;
+      run.f1 = f1;
     }
   }
   std::size_t current = segments;

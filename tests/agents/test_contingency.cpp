@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <functional>
+#include <vector>
 
 #include "freeplay/agents/contingency.hpp"
 #include "freeplay/core/rng.hpp"
@@ -142,6 +143,75 @@ TEST(Contingency, NonContingentAttentionHabituatesAndRecoversSlowly) {
   EXPECT_GT(d.salience(), habituated);
   EXPECT_LT(d.salience(), 0.5) << "a minute is not enough to recover (recovery time " << params.habituation_recovery_s
                                << " s)";
+}
+
+/// One step of a scripted session: advance by `dt`, then maybe a bid of mine (kind 0–2, or −1) and maybe a partner
+/// act (kind 0–3, or −1), and seven of my play bids so that the oldest open bid is closed early now and then.
+struct Step {
+  double dt;
+  int bid;
+  int act;
+};
+
+std::vector<Step> scripted_steps(std::uint64_t seed, int count) {
+  Rng rng(seed);
+  std::vector<Step> steps;
+  for (int i = 0; i < count; ++i) {
+    const double dt = i % 7 == 3 ? 0.25 : (i % 11 == 5 ? 0.05 : kDt);  // mostly the tick, sometimes another length
+    const int bid = rng.bernoulli(0.3) ? static_cast<int>(rng.uniform_int(0, 2)) : -1;
+    const int act = rng.bernoulli(0.3) ? static_cast<int>(rng.uniform_int(0, 3)) : -1;
+    steps.push_back({dt, bid, act});
+  }
+  return steps;
+}
+
+double apply(ContingencyDetector& d, const Step& step, double t) {
+  t += step.dt;
+  d.advance(t, step.dt);
+  if (step.bid >= 0) d.on_my_bid(t, static_cast<BidKind>(step.bid), step.bid == 0 ? 2 : -1, {0.1, -0.2}, 0.5, true);
+  if (step.act >= 0) d.on_partner_act(t, static_cast<PartnerActKind>(step.act), 2, {0.12, -0.2});
+  return t;
+}
+
+/// Everything the detector estimates, read in one order.
+std::vector<double> estimates(const ContingencyDetector& d) {
+  return {d.contingency(), d.link_probability(), d.attributable_share(), d.answered_share(), d.base_share(),
+          d.salience()};
+}
+
+TEST(Contingency, CachedEstimatesAndDecayFactorsEqualAFreshDetectorsAfterEveryStep) {
+  // A detector read after every step (its estimates, priors and per-step factors cached and reused) against, at
+  // each step, a new detector that replays the same steps and is read only then (nothing cached yet): equal to
+  // the bit. Steps of three lengths make the kept decay factors change; a missing invalidation would show here.
+  const ContingencyParams params = shipped();
+  const auto steps = scripted_steps(11, 160);
+  ContingencyDetector read_always(params);
+  double t = 0.0;
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    t = apply(read_always, steps[i], t);
+    const auto cached = estimates(read_always);
+    ContingencyDetector fresh(params);
+    double t_fresh = 0.0;
+    for (std::size_t j = 0; j <= i; ++j) t_fresh = apply(fresh, steps[j], t_fresh);
+    EXPECT_EQ(cached, estimates(fresh)) << "step " << i;
+  }
+}
+
+TEST(Contingency, DecayFactorsFollowTheStepLength) {
+  // Salience recovers by 1 − exp(−dt / recovery) of what is missing, for each step's own dt (a factor kept from a
+  // step of another length would not).
+  const ContingencyParams params = shipped();
+  ContingencyDetector d(params);
+  double expected = 1.0;
+  double t = 0.0;
+  for (const double dt : {0.1, 0.1, 0.5, 0.1, 2.0, 2.0, 0.1}) {
+    d.habituate();
+    expected *= 1.0 - params.habituation_rate;
+    t += dt;
+    d.advance(t, dt);
+    expected += (1.0 - expected) * (1.0 - std::exp(-dt / params.habituation_recovery_s));
+    EXPECT_EQ(d.salience(), expected) << "dt " << dt;
+  }
 }
 
 }  // namespace

@@ -83,6 +83,33 @@ TEST(StrokePainter, EveryPixelGetsTheCoverageOfItsDistanceToThePath) {
   }
 }
 
+TEST(StrokePainter, CanvasSizedPiecesMatchTheDefinitionAtEveryAngle) {
+  // Pieces as the canvas paints them at 1920 px (50 px wide, 4 px samples), in every direction including exactly
+  // and nearly axis-parallel ones (a slope below or near 1e-12): the rows' interval ends are computed with
+  // reciprocals and two rows at a time, and every pixel must still be what the definition gives.
+  Rng rng(7);
+  for (int trial = 0; trial < 240; ++trial) {
+    const double angle = trial % 4 == 0 ? (trial / 4 % 4) * 1.5707963267948966
+                         : trial % 4 == 1 ? (trial / 4 % 4) * 1.5707963267948966 + rng.uniform(-1e-12, 1e-12)
+                                          : rng.uniform(0.0, 6.283185307179586);
+    cv::Point2d p(rng.uniform(20.0, 100.0), rng.uniform(20.0, 60.0));
+    if (trial % 3 == 0) p = cv::Point2d(std::round(p.x), std::round(p.y));
+    std::vector<cv::Point2d> path{p};
+    const int segments = static_cast<int>(rng.uniform_int(1, 6));
+    for (int i = 0; i < segments; ++i) {
+      const double turn = trial % 4 < 2 ? 0.0 : rng.uniform(-0.3, 0.3);
+      p += 4.0 * cv::Point2d(std::cos(angle + i * turn), std::sin(angle + i * turn));
+      path.push_back(p);
+    }
+    const cv::Mat background(80, 120, CV_8UC3, cv::Scalar(200, 120, 30));
+    cv::Mat image = background.clone();
+    StrokePainter painter;
+    painter.paint(image, path, 50.0, kBlue);
+    const cv::Mat expected = painted_by_definition(background, path, 50.0, kBlue);
+    EXPECT_EQ(cv::norm(image, expected, cv::NORM_INF), 0.0) << "trial " << trial << ", angle " << angle;
+  }
+}
+
 TEST(StrokePainter, OverlappingSegmentsAreBlendedOnceLikeACanvasStroke) {
   // A path that doubles back over itself paints the pixels of a single pass: coverage is the union's, not a sum.
   StrokePainter painter;

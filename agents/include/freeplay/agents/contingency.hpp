@@ -125,6 +125,18 @@ class ContingencyDetector {
   double weighted(Share share) const;
 
   const ContingencyParams* params_;
+  double prior_log_odds_;  ///< log(prior / (1 − prior)) of `prior_link_probability`, computed once
+  /// The forgetting, interruption decay and habituation recovery factors of one step of `dt` seconds, kept for the
+  /// next step of the same length (the exp calls of every tick).
+  struct Decay {
+    double dt = -1.0;  ///< the step they belong to (−1: none yet)
+    double keep = 0.0;
+    double interruptions = 0.0;
+    double recovery = 0.0;
+  };
+  Decay decay_;
+  /// The factors of a step of `dt` seconds.
+  Decay decay_over(double dt) const;
   static constexpr int kMaxOpen = 6;
   std::array<OpenBid, kMaxOpen> open_{};
   int open_count_ = 0;
@@ -144,6 +156,15 @@ class ContingencyDetector {
     double contingency = 0.0;
   };
   mutable Estimates cached_;
+  /// The base rate's prior of each kind of bid, 1 − exp(−rate × mean window), kept like the estimates: the
+  /// estimates and base_share() both read it every tick.
+  struct Priors {
+    bool valid = false;
+    std::array<double, kBidKinds> base_share{};
+  };
+  mutable Priors priors_;
+  /// The base rate's prior of `r` (one of rates_).
+  double prior_base_share(const Rates& r) const;
   /// link_probability() computed from the counts (causal support).
   double causal_support_link() const;
   /// Computes link_probability() and contingency() from the counts.
