@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "min_jerk.hpp"
+
 namespace freeplay::agents {
 namespace {
 
@@ -12,12 +14,6 @@ constexpr double kMargin = 0.02;
 constexpr double kNever = 1e18;
 /// Comments among the utterances to the partner that are not proposals (the rest are questions).
 constexpr double kCommentShareOfTheRest = 5.0 / 7.0;
-
-double min_jerk(double tau) {
-  tau = std::clamp(tau, 0.0, 1.0);
-  const double t3 = tau * tau * tau;
-  return t3 * (10.0 - 15.0 * tau + 6.0 * tau * tau);
-}
 
 double ema_weight(double dt, double tau) { return tau > 0.0 ? 1.0 - std::exp(-dt / tau) : 1.0; }
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "min_jerk.hpp"
+
 namespace freeplay::agents {
 namespace {
 
@@ -45,11 +47,6 @@ double split_lognormal(Rng& rng, double median, double p10, double p90) {
   const double z = rng.normal();
   const double sigma = z < 0.0 ? std::log(median / p10) / 1.2815515655 : std::log(p90 / median) / 1.2815515655;
   return median * std::exp(z * sigma);
-}
-
-double min_jerk(double tau) {
-  tau = std::clamp(tau, 0.0, 1.0);
-  return tau * tau * tau * (10.0 - 15.0 * tau + 6.0 * tau * tau);
 }
 
 struct Finger {
